@@ -1,0 +1,26 @@
+// Classification (SPEC §3): validates a TetSoup and produces the
+// ClassifiedTetMesh, inferring the model's faces, edges and vertices where the
+// source gave only region tags, or checking the given classification against
+// the mesh topology when the source gave it all (Gmsh msh4).
+#pragma once
+#include <string>
+
+#include "mesh/classified_tet_mesh.h"
+#include "mesh/tet_soup.h"
+
+namespace polydual {
+
+struct ClassifyParams {
+  // Dihedral angle (degrees) between neighbouring model-face triangles above
+  // which a model face is split (and between model-edge segments above which a
+  // model vertex is made). Range (0, 180]; 180 disables geometric splitting.
+  double feature_angle_deg = 30.0;
+};
+
+// Validates on load (SPEC §2): finite coordinates, indices in range, every tet
+// positively oriented by the exact predicate (inverted or zero-volume tets are
+// errors naming the tet), conformity, unused vertices. Throws InputError naming
+// soup.source and the place.
+ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params = {});
+
+}  // namespace polydual

@@ -1,0 +1,17 @@
+// Classification of a mesh entity on the geometric model (SPEC §1): the
+// dimension and tag of the lowest-dimension model entity it lies on.
+#pragma once
+#include <compare>
+#include <cstdint>
+
+namespace polydual {
+
+struct ModelRef {
+  static constexpr std::int8_t kNone = -1;
+  std::int8_t dim = kNone;  // 0 vertex, 1 edge, 2 face, 3 region, -1 unclassified
+  std::int32_t tag = 0;
+  constexpr bool valid() const { return dim >= 0; }
+  friend constexpr auto operator<=>(ModelRef, ModelRef) = default;
+};
+
+}  // namespace polydual

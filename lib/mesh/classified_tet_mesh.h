@@ -1,0 +1,121 @@
+// The classified tetrahedral mesh every later stage reads (SPEC §1, §3).
+// Built by classify() from a TetSoup; immutable afterwards.
+//
+// Conventions:
+//  - every tet (v0,v1,v2,v3) is positively oriented: det[v1-v0, v2-v0, v3-v0] > 0
+//    (checked exactly on load);
+//  - local face i of a tet is the triangle opposite its local vertex i;
+//  - local edge k of a tet joins kTetEdge[k][0] and kTetEdge[k][1].
+#pragma once
+#include <array>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "core/classification.h"
+#include "core/handles.h"
+#include "core/vec3.h"
+
+namespace polydual {
+
+inline constexpr int kTetEdge[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+
+// One entity of the geometric model and the higher-dimensional entities it bounds
+// (a model face lists its regions: 0 for a fracture inside one region, 1 external,
+// 2 interface; a model edge lists its faces; a model vertex its edges).
+struct ModelEntity {
+  int dim = 0;
+  std::int32_t tag = 0;
+  std::vector<std::int32_t> bounds;  // tags of dimension dim+1, sorted, unique
+  std::vector<std::int32_t> regions; // for faces: regions on its sides (1 or 2 tags, equal twice for a fracture)
+};
+
+struct ModelTopology {
+  std::array<std::vector<ModelEntity>, 4> entities;  // by dimension, sorted by tag
+  const ModelEntity* find(int dim, std::int32_t tag) const;
+  std::size_t count(int dim) const { return entities[dim].size(); }
+};
+
+class ClassifiedTetMesh {
+ public:
+  // --- sizes
+  std::size_t num_vertices() const { return points_.size(); }
+  std::size_t num_tets() const { return tets_.size(); }
+  std::size_t num_triangles() const { return tri_tets_.size(); }
+  std::size_t num_edges() const { return edge_verts_.size(); }
+
+  // --- geometry and connectivity
+  const std::string& source() const { return source_; }
+  const Point3& point(VertexId v) const { return points_[v.idx]; }
+  const std::vector<Point3>& points() const { return points_; }
+  const std::array<VertexId, 4>& tet(TetId t) const { return tets_[t.idx]; }
+  std::int32_t region(TetId t) const { return tet_region_[t.idx]; }
+  // Neighbour across local face i (invalid on the boundary).
+  TetId tet_neighbor(TetId t, int i) const { return tet_adj_[4 * t.idx + i]; }
+  TriId tet_triangle(TetId t, int i) const { return tet_tri_[4 * t.idx + i]; }
+  EdgeId tet_edge(TetId t, int k) const { return tet_edge_[6 * t.idx + k]; }
+  // The triangle's vertices, oriented so its right-hand normal points out of
+  // triangle_tet(f, 0).
+  const std::array<VertexId, 3>& triangle(TriId f) const { return tri_verts_[f.idx]; }
+  // The one or two tets of a triangle (side 1 invalid on the boundary).
+  TetId triangle_tet(TriId f, int side) const { return tri_tets_[f.idx][side]; }
+  const std::array<VertexId, 2>& edge(EdgeId e) const { return edge_verts_[e.idx]; }
+  // Tets around a vertex (its star), in increasing tet order.
+  std::span<const TetId> vertex_tets(VertexId v) const {
+    return {vstar_.data() + vstar_off_[v.idx], vstar_.data() + vstar_off_[v.idx + 1]};
+  }
+  // The tets around edge e in right-handed order about edge(e)[0] -> edge(e)[1].
+  // For an edge on the boundary the ring is open and starts at a tet whose
+  // predecessor does not exist; `closed` tells which.
+  std::vector<TetId> edge_ring(EdgeId e, bool* closed = nullptr) const;
+  // Local index (0..3) of v in tet t, or -1.
+  int local_index(TetId t, VertexId v) const;
+  // Edge id of the edge (a,b), or invalid if a and b share no tet.
+  EdgeId find_edge(VertexId a, VertexId b) const;
+
+  // --- classification
+  ModelRef vertex_class(VertexId v) const { return vertex_class_[v.idx]; }
+  ModelRef edge_class(EdgeId e) const { return edge_class_[e.idx]; }
+  ModelRef triangle_class(TriId f) const { return tri_class_[f.idx]; }
+  bool on_model_face(TriId f) const { return tri_class_[f.idx].dim == 2; }
+  const ModelTopology& model() const { return model_; }
+
+  // Volume of tet t (double; for statistics only).
+  double tet_volume(TetId t) const;
+
+ private:
+  friend class TetMeshBuilder;
+  std::string source_;
+  std::vector<Point3> points_;
+  std::vector<std::array<VertexId, 4>> tets_;
+  std::vector<std::int32_t> tet_region_;
+  std::vector<TetId> tet_adj_;   // 4 per tet
+  std::vector<TriId> tet_tri_;   // 4 per tet
+  std::vector<EdgeId> tet_edge_; // 6 per tet
+  std::vector<std::array<VertexId, 3>> tri_verts_;
+  std::vector<std::array<TetId, 2>> tri_tets_;
+  std::vector<std::array<VertexId, 2>> edge_verts_;  // (a,b) with a < b
+  std::vector<TetId> edge_tet_;                      // one tet per edge
+  std::vector<std::uint32_t> vstar_off_;
+  std::vector<TetId> vstar_;
+  std::vector<ModelRef> vertex_class_, edge_class_, tri_class_;
+  ModelTopology model_;
+};
+
+// Builds the connectivity of a ClassifiedTetMesh (adjacency, triangles, edges,
+// stars). Used by classify(); exposes the setters classification needs.
+class TetMeshBuilder {
+ public:
+  // Throws InputError (naming `source` and the tet) on non-conformity: a
+  // triangle shared by more than two tets.
+  static ClassifiedTetMesh build_topology(std::string source, std::vector<Point3> points,
+                                          std::vector<std::array<VertexId, 4>> tets,
+                                          std::vector<std::int32_t> regions);
+  static std::vector<ModelRef>& vertex_class(ClassifiedTetMesh& m) { return m.vertex_class_; }
+  static std::vector<ModelRef>& edge_class(ClassifiedTetMesh& m) { return m.edge_class_; }
+  static std::vector<ModelRef>& triangle_class(ClassifiedTetMesh& m) { return m.tri_class_; }
+  static ModelTopology& model(ClassifiedTetMesh& m) { return m.model_; }
+};
+
+}  // namespace polydual

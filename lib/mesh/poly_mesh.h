@@ -1,0 +1,90 @@
+// The polyhedral (dual) mesh: face-based, like OpenFOAM and OpenVolumeMesh.
+//  - a face is a loop of points; its right-hand normal points OUT of its owner;
+//  - an interior face has a neighbour (which sees the loop reversed); a face on
+//    the external boundary has none;
+//  - a cell is a list of half-faces (HalfFace{f, 0} for an owned face,
+//    HalfFace{f, 1} for a face it neighbours), so every half-face's loop, read in
+//    the cell's sense, has an outward normal.
+// A face with owner == neighbour is a "slit" face (both sides of a fracture
+// triangle fan belong to one cell at a fracture tip); validate() reports it.
+#pragma once
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/classification.h"
+#include "core/handles.h"
+#include "core/vec3.h"
+
+namespace polydual {
+
+enum class FaceKind : std::uint8_t {
+  Interior = 0,   // inside one region, not on a model face
+  External = 1,   // on an external model face (owner only)
+  Interface = 2,  // on a model face between two regions
+  Fracture = 3,   // on a model face with the same region on both sides
+};
+
+struct PolyMesh {
+  // Points
+  std::vector<Point3> points;
+  std::vector<ModelRef> point_class;  // dim 0..3 and model tag of each point
+
+  // Faces (CSR loops)
+  std::vector<std::uint32_t> face_offsets{0};
+  std::vector<PointId> face_points;
+  std::vector<CellId> face_owner, face_neighbour;  // neighbour invalid on the boundary
+  std::vector<FaceKind> face_kind;
+  std::vector<std::int32_t> face_tag;  // model face tag (kind != Interior), else 0
+
+  // Cells (CSR half-face lists)
+  std::vector<std::uint32_t> cell_offsets{0};
+  std::vector<HalfFace> cell_faces;
+  std::vector<std::int32_t> cell_material;  // model region tag
+  std::vector<VertexId> cell_primal;        // source primal vertex
+
+  std::size_t num_points() const { return points.size(); }
+  std::size_t num_faces() const { return face_owner.size(); }
+  std::size_t num_cells() const { return cell_material.size(); }
+
+  std::span<const PointId> face(FaceId f) const {
+    return {face_points.data() + face_offsets[f.idx], face_points.data() + face_offsets[f.idx + 1]};
+  }
+  std::span<const HalfFace> cell(CellId c) const {
+    return {cell_faces.data() + cell_offsets[c.idx], cell_faces.data() + cell_offsets[c.idx + 1]};
+  }
+  CellId half_face_cell(HalfFace h) const {
+    return h.side() == 0 ? face_owner[h.face().idx] : face_neighbour[h.face().idx];
+  }
+
+  // Appenders used by the builders; return the new handle.
+  PointId add_point(const Point3& p, ModelRef cls) {
+    points.push_back(p);
+    point_class.push_back(cls);
+    return PointId(points.size() - 1);
+  }
+  FaceId add_face(std::span<const PointId> loop, CellId owner, CellId neighbour, FaceKind kind,
+                  std::int32_t tag) {
+    face_points.insert(face_points.end(), loop.begin(), loop.end());
+    face_offsets.push_back(static_cast<std::uint32_t>(face_points.size()));
+    face_owner.push_back(owner);
+    face_neighbour.push_back(neighbour);
+    face_kind.push_back(kind);
+    face_tag.push_back(tag);
+    return FaceId(face_owner.size() - 1);
+  }
+  CellId add_cell(std::span<const HalfFace> faces, std::int32_t material, VertexId primal) {
+    cell_faces.insert(cell_faces.end(), faces.begin(), faces.end());
+    cell_offsets.push_back(static_cast<std::uint32_t>(cell_faces.size()));
+    cell_material.push_back(material);
+    cell_primal.push_back(primal);
+    return CellId(cell_material.size() - 1);
+  }
+
+  // Distinct points of a cell, in first-seen order (deterministic).
+  std::vector<PointId> cell_points(CellId c) const;
+  // The loop of half-face h as its cell sees it (reversed for side 1).
+  std::vector<PointId> oriented_loop(HalfFace h) const;
+};
+
+}  // namespace polydual

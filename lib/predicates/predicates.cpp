@@ -1,0 +1,169 @@
+// Exact predicates. See predicates.h for the contract and proofs/star_filter.md
+// for the derivation of the star test's static error bound.
+#include "predicates/predicates.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Interval_nt.h>
+#include <CGAL/Mpzf.h>
+
+#include <cfloat>
+#include <cmath>
+#include <vector>
+
+namespace polydual {
+
+namespace {
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using KP = K::Point_3;
+inline KP kp(const Point3& p) { return KP(p.x, p.y, p.z); }
+
+inline Sign to_sign(int s) { return s > 0 ? Sign::Positive : (s < 0 ? Sign::Negative : Sign::Zero); }
+inline Sign flip(Sign s) { return static_cast<Sign>(-static_cast<int>(s)); }
+
+template <class NT>
+struct V3 {
+  NT x, y, z;
+};
+template <class NT>
+V3<NT> sub(const Point3& p, const Point3& q) { return {NT(p.x) - NT(q.x), NT(p.y) - NT(q.y), NT(p.z) - NT(q.z)}; }
+template <class NT>
+NT dot3(const V3<NT>& a, const V3<NT>& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+template <class NT>
+V3<NT> cross3(const V3<NT>& a, const V3<NT>& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+
+// Numerator of the circumcenter's barycentric coordinate at p1 of the tet
+// (p0,p1,p2,p3), up to the positive factor 1/(2 D^2), D = det[u,v,w] > 0:
+//   c - p0 = (|u|^2 (v x w) + |v|^2 (w x u) + |w|^2 (u x v)) / (2D)
+//   lambda_1 = det[c - p0, v, w] / D
+//            = (|u|^2 |v x w|^2 + |v|^2 (w x u).(v x w) + |w|^2 (u x v).(v x w)) / (2 D^2).
+template <class NT>
+NT circ_bary_numerator(const Point3& p0, const Point3& p1, const Point3& p2, const Point3& p3) {
+  V3<NT> u = sub<NT>(p1, p0), v = sub<NT>(p2, p0), w = sub<NT>(p3, p0);
+  V3<NT> vw = cross3(v, w), wu = cross3(w, u), uv = cross3(u, v);
+  return dot3(u, u) * dot3(vw, vw) + dot3(v, v) * dot3(wu, vw) + dot3(w, w) * dot3(uv, vw);
+}
+
+template <class F>
+Sign filtered_sign(F&& f, std::atomic<std::uint64_t>& exact_counter) {
+  {
+    CGAL::Protect_FPU_rounding<true> guard;
+    CGAL::Interval_nt_advanced r = f(CGAL::Interval_nt_advanced());
+    if (r.inf() > 0) return Sign::Positive;
+    if (r.sup() < 0) return Sign::Negative;
+    if (r.inf() == 0 && r.sup() == 0) return Sign::Zero;
+  }
+  exact_counter.fetch_add(1, std::memory_order_relaxed);
+  return to_sign(static_cast<int>(CGAL::sign(f(CGAL::Mpzf()))));
+}
+}  // namespace
+
+PredicateCounters& predicate_counters() {
+  static PredicateCounters c;
+  return c;
+}
+
+Sign orient3d(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
+  // CGAL's orientation(p,q,r,s) is the sign of det[q-p, r-p, s-p] (filtered, exact).
+  return to_sign(static_cast<int>(CGAL::orientation(kp(a), kp(b), kp(c), kp(d))));
+}
+
+Sign insphere(const Point3& a, const Point3& b, const Point3& c, const Point3& d, const Point3& e) {
+  // side_of_oriented_sphere: ON_POSITIVE_SIDE means inside for positive tets.
+  return to_sign(static_cast<int>(CGAL::side_of_oriented_sphere(kp(a), kp(b), kp(c), kp(d), kp(e))));
+}
+
+void circumcenter_barycentric_signs(const Point3& a, const Point3& b, const Point3& c,
+                                    const Point3& d, Sign out[4]) {
+  auto& cnt = predicate_counters();
+  cnt.circ_calls.fetch_add(1, std::memory_order_relaxed);
+  // Even permutations of (a,b,c,d) keep D > 0 and bring each vertex to slot 1.
+  const Point3* p[4] = {&a, &b, &c, &d};
+  static constexpr int perm[4][4] = {{1, 0, 3, 2}, {0, 1, 2, 3}, {0, 3, 1, 2}, {0, 2, 3, 1}};
+  for (int i = 0; i < 4; ++i) {
+    const auto& q = perm[i];
+    out[i] = filtered_sign(
+        [&](auto zero) {
+          using NT = decltype(zero);
+          return circ_bary_numerator<NT>(*p[q[0]], *p[q[1]], *p[q[2]], *p[q[3]]);
+        },
+        cnt.circ_exact);
+  }
+}
+
+void triangle_circumcenter_barycentric_signs(const Point3& a, const Point3& b, const Point3& c,
+                                             Sign out[3]) {
+  // lambda_A is proportional to |BC|^2 (|AB|^2 + |AC|^2 - |BC|^2) = 2|BC|^2 (B-A).(C-A).
+  auto& cnt = predicate_counters();
+  const Point3* p[3] = {&a, &b, &c};
+  for (int i = 0; i < 3; ++i) {
+    const Point3 &o = *p[i], &q = *p[(i + 1) % 3], &r = *p[(i + 2) % 3];
+    out[i] = filtered_sign(
+        [&](auto zero) {
+          using NT = decltype(zero);
+          return dot3(sub<NT>(q, o), sub<NT>(r, o));
+        },
+        cnt.circ_exact);
+  }
+}
+
+namespace {
+template <class NT>
+NT star_det(const Point3& a, const Point3& b, std::span<const Point3> face, std::span<const Point3> cell) {
+  V3<NT> u = sub<NT>(b, a);
+  V3<NT> s{NT(0), NT(0), NT(0)}, t{NT(0), NT(0), NT(0)};
+  for (const Point3& p : face) {
+    V3<NT> d = sub<NT>(p, a);
+    s.x = s.x + d.x; s.y = s.y + d.y; s.z = s.z + d.z;
+  }
+  for (const Point3& q : cell) {
+    V3<NT> d = sub<NT>(q, a);
+    t.x = t.x + d.x; t.y = t.y + d.y; t.z = t.z + d.z;
+  }
+  return dot3(u, cross3(s, t));
+}
+}  // namespace
+
+Sign decomposition_tet_sign(const Point3& a, const Point3& b, std::span<const Point3> face,
+                            std::span<const Point3> cell) {
+  auto& cnt = predicate_counters();
+  cnt.star_calls.fetch_add(1, std::memory_order_relaxed);
+  // Static filter (proofs/star_filter.md): with k = |face|, m = |cell|,
+  //   |fl(det) - det| <= (k + m + 10) * eps * P,
+  //   P = |u|.( |S|abs x |T|abs )  (permanent on absolute values),
+  // where |S|abs = sum |fl(p - a)| and likewise |T|abs, all computed in doubles.
+  const double ux = b.x - a.x, uy = b.y - a.y, uz = b.z - a.z;
+  double sx = 0, sy = 0, sz = 0, tx = 0, ty = 0, tz = 0;
+  double asx = 0, asy = 0, asz = 0, atx = 0, aty = 0, atz = 0;
+  for (const Point3& p : face) {
+    const double dx = p.x - a.x, dy = p.y - a.y, dz = p.z - a.z;
+    sx += dx; sy += dy; sz += dz;
+    asx += std::fabs(dx); asy += std::fabs(dy); asz += std::fabs(dz);
+  }
+  for (const Point3& q : cell) {
+    const double dx = q.x - a.x, dy = q.y - a.y, dz = q.z - a.z;
+    tx += dx; ty += dy; tz += dz;
+    atx += std::fabs(dx); aty += std::fabs(dy); atz += std::fabs(dz);
+  }
+  const double det = ux * (sy * tz - sz * ty) + uy * (sz * tx - sx * tz) + uz * (sx * ty - sy * tx);
+  const double perm = std::fabs(ux) * (asy * atz + asz * aty) + std::fabs(uy) * (asz * atx + asx * atz) +
+                      std::fabs(uz) * (asx * aty + asy * atx);
+  const double eps = DBL_EPSILON / 2;  // unit roundoff 2^-53
+  const double bound = (double(face.size() + cell.size()) + 10.0) * eps * perm * (1.0 + 1e-6);
+  // Below ~1e-250 the bound could be spoiled by underflow: go exact.
+  if (std::isfinite(perm) && perm > 1e-250) {
+    if (det > bound) return Sign::Negative;   // det > 0  ->  vol(R,a,b,F) < 0
+    if (det < -bound) return Sign::Positive;
+  }
+  cnt.star_exact.fetch_add(1, std::memory_order_relaxed);
+  return flip(to_sign(static_cast<int>(CGAL::sign(star_det<CGAL::Mpzf>(a, b, face, cell)))));
+}
+
+Sign decomposition_tet_sign_inexact(const Point3& a, const Point3& b, std::span<const Point3> face,
+                                    std::span<const Point3> cell) {
+  const double d = star_det<double>(a, b, face, cell);
+  return d > 0 ? Sign::Negative : (d < 0 ? Sign::Positive : Sign::Zero);
+}
+
+}  // namespace polydual

@@ -1,0 +1,60 @@
+// The only place polydual decides signs (STYLE: exactness lives in one place).
+// Every function here is EXACT: it returns the sign of the real-number
+// expression of its double inputs, whatever the rounding. Each runs a floating
+// point filter first and an exact fallback on dyadic numbers (CGAL::Mpzf) or
+// CGAL's filtered Epick predicates when the filter cannot decide.
+#pragma once
+#include <atomic>
+#include <cstdint>
+#include <span>
+
+#include "core/vec3.h"
+
+namespace polydual {
+
+enum class Sign : int { Negative = -1, Zero = 0, Positive = 1 };
+
+// Sign of det[b-a, c-a, d-a]: Positive iff d lies on the side of plane (a,b,c)
+// that its right-hand normal points to (CGAL::orientation convention).
+Sign orient3d(const Point3& a, const Point3& b, const Point3& c, const Point3& d);
+
+// Sign of the insphere determinant of (a,b,c,d) against e, for a positive
+// tet (a,b,c,d): Positive iff e is strictly inside the circumsphere, Zero iff
+// cospherical.
+Sign insphere(const Point3& a, const Point3& b, const Point3& c, const Point3& d, const Point3& e);
+
+// Signs of the barycentric coordinates of the circumcenter of a positive tet
+// (a,b,c,d) with respect to its vertices, in that order. The closed tet
+// contains its circumcenter iff none is Negative (well-centred, SPEC §4.1).
+void circumcenter_barycentric_signs(const Point3& a, const Point3& b, const Point3& c,
+                                    const Point3& d, Sign out[4]);
+
+// Same for a non-degenerate triangle (in its own plane): out[i] is the sign of
+// the circumcenter's barycentric coordinate at vertex i, i.e. of the dot product
+// of the two edge vectors leaving vertex i (acute, right or obtuse angle).
+void triangle_circumcenter_barycentric_signs(const Point3& a, const Point3& b, const Point3& c,
+                                             Sign out[3]);
+
+// The star-shaped test's decomposition tet (SPEC §5). With F the mean of
+// `face` and R the mean of `cell`, returns the sign of det[a-R, b-R, F-R]
+// (signed volume of (R,a,b,F)): Positive is the valid orientation when (a,b) is an
+// edge of the face in its outward order. Computed as the sign of
+// -det[b-a, sum(p-a), sum(q-a)] (positive scalings dropped), with a static
+// filter (proofs/star_filter.md) and an exact Mpzf fallback.
+Sign decomposition_tet_sign(const Point3& a, const Point3& b, std::span<const Point3> face,
+                            std::span<const Point3> cell);
+
+// The same expression in plain doubles: NOT exact. For benchmarks and for the
+// adversarial tests that show why the exact version exists.
+Sign decomposition_tet_sign_inexact(const Point3& a, const Point3& b, std::span<const Point3> face,
+                                    std::span<const Point3> cell);
+
+// How often the exact paths ran (relaxed atomics; for reports and benchmarks).
+struct PredicateCounters {
+  std::atomic<std::uint64_t> star_calls{0}, star_exact{0};
+  std::atomic<std::uint64_t> circ_calls{0}, circ_exact{0};
+  void reset() { star_calls = star_exact = circ_calls = circ_exact = 0; }
+};
+PredicateCounters& predicate_counters();
+
+}  // namespace polydual
