@@ -88,6 +88,28 @@ std::vector<TetId> ClassifiedTetMesh::edge_ring(EdgeId e, bool* closed) const {
   return ring;
 }
 
+void ClassifiedTetMesh::edge_ring(EdgeId e, std::vector<TetId>& tets, std::vector<TriId>& tris,
+                                  bool& closed) const {
+  tets = edge_ring(e, &closed);
+  tris.clear();
+  const VertexId a = edge_verts_[e.idx][0], b = edge_verts_[e.idx][1];
+  for (std::size_t k = 0; k < tets.size(); ++k) {
+    int ic, id;
+    ring_others(local_index(tets[k], a), local_index(tets[k], b), ic, id);
+    if (k == 0) tris.push_back(tet_triangle(tets[k], id));  // face (a, b, ic): before
+    tris.push_back(tet_triangle(tets[k], ic));              // face (a, b, id): after
+  }
+}
+
+EdgeId ClassifiedTetMesh::triangle_edge(TriId f, VertexId a, VertexId b) const {
+  TetId t = tri_tets_[f.idx][0];
+  int ia = local_index(t, a), ib = local_index(t, b);
+  for (int k = 0; k < 6; ++k)
+    if ((kTetEdge[k][0] == ia && kTetEdge[k][1] == ib) || (kTetEdge[k][0] == ib && kTetEdge[k][1] == ia))
+      return tet_edge(t, k);
+  return EdgeId::invalid();
+}
+
 double ClassifiedTetMesh::tet_volume(TetId t) const {
   const auto& v = tets_[t.idx];
   Vec3 a = points_[v[0].idx];

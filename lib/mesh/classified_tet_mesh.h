@@ -69,6 +69,12 @@ class ClassifiedTetMesh {
   // For an edge on the boundary the ring is open and starts at a tet whose
   // predecessor does not exist; `closed` tells which.
   std::vector<TetId> edge_ring(EdgeId e, bool* closed = nullptr) const;
+  // The ring with the triangles between its tets: tris.size() == tets.size()+1,
+  // tris[k] precedes tets[k] and tris[k+1] follows it in the right-handed order;
+  // for a closed ring tris.front() == tris.back().
+  void edge_ring(EdgeId e, std::vector<TetId>& tets, std::vector<TriId>& tris, bool& closed) const;
+  // The edge joining two vertices of triangle f.
+  EdgeId triangle_edge(TriId f, VertexId a, VertexId b) const;
   // Local index (0..3) of v in tet t, or -1.
   int local_index(TetId t, VertexId v) const;
   // Edge id of the edge (a,b), or invalid if a and b share no tet.

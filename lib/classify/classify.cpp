@@ -1,0 +1,417 @@
+// Classification (SPEC §3). The model entities are found bottom-up from the
+// mesh: model-face triangles -> model faces (connected pieces, split by given
+// tags, region pairs and, when no tag was given, the feature angle); primal
+// edges where the model-face triangles do not form one smooth manifold sheet ->
+// model edges; vertices where model edges end, branch or bend -> model vertices.
+// Every decision here is combinatorial except the feature-angle tests, which are
+// plain double geometry (an angle threshold is a modelling choice, not a sign
+// that must be exact). Tet orientation is decided exactly (lib/predicates).
+#include "classify/classify.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <set>
+#include <unordered_map>
+
+#include "classify/union_find.h"
+#include "core/error.h"
+#include "predicates/predicates.h"
+
+namespace polydual {
+
+namespace {
+
+constexpr std::int32_t kNoTag = std::numeric_limits<std::int32_t>::min();
+
+std::string vlist(std::initializer_list<std::uint32_t> v) {
+  std::string s = "(";
+  bool first = true;
+  for (auto x : v) { s += (first ? "" : ", ") + std::to_string(x + 1); first = false; }
+  return s + ")";
+}
+
+// Validate indices and coordinates; drop unused vertices (remap everything).
+struct Compacted {
+  std::vector<Point3> points;
+  std::vector<std::array<VertexId, 4>> tets;
+  std::vector<std::uint32_t> remap;  // soup index -> compact index (or -1)
+};
+
+Compacted validate_and_compact(const TetSoup& s) {
+  const std::size_t nv = s.points.size();
+  if (s.tets.empty()) throw InputError(s.source, "", "mesh has no tetrahedra");
+  if (s.tet_region.size() != s.tets.size())
+    throw InputError(s.source, "", "region tags given for " + std::to_string(s.tet_region.size()) +
+                                       " tets but the mesh has " + std::to_string(s.tets.size()));
+  std::vector<char> used(nv, 0);
+  for (std::size_t t = 0; t < s.tets.size(); ++t) {
+    const auto& tv = s.tets[t];
+    for (int i = 0; i < 4; ++i) {
+      if (tv[i] >= nv)
+        throw InputError(s.source, "tet " + std::to_string(t + 1),
+                         "vertex index " + std::to_string(tv[i] + 1) + " out of range (1.." +
+                             std::to_string(nv) + ")");
+      for (int j = 0; j < i; ++j)
+        if (tv[i] == tv[j])
+          throw InputError(s.source, "tet " + std::to_string(t + 1),
+                           "tet has zero volume (vertex " + std::to_string(tv[i] + 1) + " repeated)");
+      used[tv[i]] = 1;
+    }
+  }
+  Compacted c;
+  c.remap.assign(nv, std::uint32_t(-1));
+  for (std::size_t v = 0; v < nv; ++v) {
+    if (!used[v]) continue;
+    if (!is_finite(s.points[v]))
+      throw InputError(s.source, "vertex " + std::to_string(v + 1), "coordinate is not finite");
+    c.remap[v] = std::uint32_t(c.points.size());
+    c.points.push_back(s.points[v]);
+  }
+  c.tets.reserve(s.tets.size());
+  for (std::size_t t = 0; t < s.tets.size(); ++t) {
+    const auto& tv = s.tets[t];
+    std::array<VertexId, 4> r{VertexId(c.remap[tv[0]]), VertexId(c.remap[tv[1]]),
+                              VertexId(c.remap[tv[2]]), VertexId(c.remap[tv[3]])};
+    // EXACT: the orientation of every input tet.
+    Sign o = orient3d(c.points[r[0].idx], c.points[r[1].idx], c.points[r[2].idx], c.points[r[3].idx]);
+    if (o == Sign::Negative)
+      throw InputError(s.source, "tet " + std::to_string(t + 1),
+                       "tet " + std::to_string(t + 1) + " is inverted (negative orientation)");
+    if (o == Sign::Zero)
+      throw InputError(s.source, "tet " + std::to_string(t + 1),
+                       "tet " + std::to_string(t + 1) + " has zero volume (degenerate)");
+    c.tets.push_back(r);
+  }
+  return c;
+}
+
+TriId find_triangle(const ClassifiedTetMesh& m, VertexId a, VertexId b, VertexId c) {
+  for (TetId t : m.vertex_tets(a)) {
+    int ib = m.local_index(t, b), ic = m.local_index(t, c);
+    if (ib < 0 || ic < 0) continue;
+    int ia = m.local_index(t, a);
+    return m.tet_triangle(t, 6 - ia - ib - ic);
+  }
+  return TriId::invalid();
+}
+
+// The three edges of triangle f.
+std::array<EdgeId, 3> triangle_edges(const ClassifiedTetMesh& m, TriId f) {
+  TetId t = m.triangle_tet(f, 0);
+  int i = 0;
+  while (m.tet_triangle(t, i) != f) ++i;
+  std::array<EdgeId, 3> out;
+  int n = 0;
+  for (int k = 0; k < 6; ++k)
+    if (kTetEdge[k][0] != i && kTetEdge[k][1] != i) out[n++] = m.tet_edge(t, k);
+  return out;
+}
+
+// Bend angle (degrees) between two triangles sharing edge (a,b) with third
+// vertices c1, c2: 0 when they continue each other in a plane. Inexact (double).
+double bend_angle(const Point3& a, const Point3& b, const Point3& c1, const Point3& c2) {
+  Vec3 e = b - a;
+  Vec3 n1 = cross(e, c1 - a), n2 = cross(c2 - a, e);
+  double d = norm(n1) * norm(n2);
+  if (d == 0) return 180.0;
+  double cs = std::clamp(dot(n1, n2) / d, -1.0, 1.0);
+  return std::acos(cs) * 180.0 / M_PI;
+}
+
+VertexId third_vertex(const ClassifiedTetMesh& m, TriId f, EdgeId e) {
+  for (VertexId v : m.triangle(f))
+    if (v != m.edge(e)[0] && v != m.edge(e)[1]) return v;
+  return VertexId::invalid();
+}
+
+// Assign tags to components: the first component carrying a given tag keeps it,
+// every other component gets a fresh tag above all given ones, in component order.
+std::vector<std::int32_t> assign_tags(const std::vector<std::int32_t>& given_tag_of_component,
+                                      std::int32_t max_given) {
+  std::set<std::int32_t> used;
+  std::vector<std::int32_t> out(given_tag_of_component.size());
+  std::int32_t next = std::max<std::int32_t>(max_given, 0) + 1;
+  for (std::size_t c = 0; c < out.size(); ++c) {
+    std::int32_t g = given_tag_of_component[c];
+    if (g != kNoTag && used.insert(g).second) out[c] = g;
+    else out[c] = next++;
+  }
+  return out;
+}
+
+}  // namespace
+
+ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params) {
+  if (!(params.feature_angle_deg > 0 && params.feature_angle_deg <= 180))
+    throw UsageError("--feature-angle must be in (0, 180] degrees");
+  Compacted c = validate_and_compact(soup);
+  ClassifiedTetMesh m = TetMeshBuilder::build_topology(soup.source, std::move(c.points),
+                                                       std::move(c.tets), soup.tet_region);
+  const std::size_t nf = m.num_triangles(), ne = m.num_edges(), nv = m.num_vertices();
+  auto remap = [&](std::uint32_t v, const char* what, std::size_t i) {
+    if (v >= c.remap.size() || c.remap[v] == std::uint32_t(-1))
+      throw InputError(soup.source, std::string(what) + " " + std::to_string(i + 1),
+                       "vertex index " + std::to_string(v + 1) + " is out of range or used by no tet");
+    return VertexId(c.remap[v]);
+  };
+
+  // ---- given triangle tags
+  std::vector<std::int32_t> tri_given(nf, kNoTag);
+  std::int32_t max_face_tag = 0;
+  for (std::size_t i = 0; i < soup.triangles.size(); ++i) {
+    const auto& t = soup.triangles[i];
+    VertexId a = remap(t.v[0], "triangle", i), b = remap(t.v[1], "triangle", i),
+             cc = remap(t.v[2], "triangle", i);
+    TriId f = find_triangle(m, a, b, cc);
+    if (!f.valid())
+      throw InputError(soup.source, "triangle " + std::to_string(i + 1),
+                       "triangle " + vlist({t.v[0], t.v[1], t.v[2]}) + " is not a face of any tet");
+    if (tri_given[f.idx] != kNoTag && tri_given[f.idx] != t.tag)
+      throw InputError(soup.source, "triangle " + std::to_string(i + 1),
+                       "triangle classified on two model faces (" + std::to_string(tri_given[f.idx]) +
+                           " and " + std::to_string(t.tag) + ")");
+    tri_given[f.idx] = t.tag;
+    max_face_tag = std::max(max_face_tag, t.tag);
+  }
+
+  // ---- model-face triangles and their grouping key
+  struct FaceKey {
+    std::int32_t given, r0, r1;  // r1 = kNoTag on the external boundary
+    auto operator<=>(const FaceKey&) const = default;
+  };
+  std::vector<char> is_mf(nf, 0);
+  std::vector<FaceKey> key(nf);
+  for (std::size_t f = 0; f < nf; ++f) {
+    TetId t0 = m.triangle_tet(TriId(f), 0), t1 = m.triangle_tet(TriId(f), 1);
+    std::int32_t r0 = m.region(t0), r1 = t1.valid() ? m.region(t1) : kNoTag;
+    bool topo = !t1.valid() || r0 != r1;
+    if (!topo && tri_given[f] == kNoTag) continue;
+    if (topo && soup.full_classification && tri_given[f] == kNoTag) {
+      const auto& v = m.triangle(TriId(f));
+      throw InputError(soup.source, "triangle " + vlist({v[0].idx, v[1].idx, v[2].idx}),
+                       std::string("contradiction: the triangle lies ") +
+                           (t1.valid() ? "between regions " + std::to_string(r0) + " and " + std::to_string(r1)
+                                       : "on the external boundary") +
+                           " but the file classifies it on no model face");
+    }
+    if (r1 != kNoTag && r1 < r0) std::swap(r0, r1);
+    is_mf[f] = 1;
+    key[f] = {tri_given[f], r0, r1};
+  }
+
+  // ---- per-edge incidence of model-face triangles
+  std::vector<std::uint32_t> e_off(ne + 1, 0);
+  std::vector<std::array<EdgeId, 3>> tri_e(nf);
+  for (std::size_t f = 0; f < nf; ++f) {
+    if (!is_mf[f]) continue;
+    tri_e[f] = triangle_edges(m, TriId(f));
+    for (EdgeId e : tri_e[f]) ++e_off[e.idx + 1];
+  }
+  std::partial_sum(e_off.begin(), e_off.end(), e_off.begin());
+  std::vector<TriId> e_tris(e_off[ne]);
+  {
+    std::vector<std::uint32_t> fill(e_off.begin(), e_off.end() - 1);
+    for (std::size_t f = 0; f < nf; ++f)
+      if (is_mf[f])
+        for (EdgeId e : tri_e[f]) e_tris[fill[e.idx]++] = TriId(f);
+  }
+
+  // ---- model faces: union across edges with exactly two model-face triangles
+  UnionFind uf(nf);
+  for (std::size_t e = 0; e < ne; ++e) {
+    if (e_off[e + 1] - e_off[e] != 2) continue;
+    TriId f1 = e_tris[e_off[e]], f2 = e_tris[e_off[e] + 1];
+    if (!(key[f1.idx] == key[f2.idx])) continue;
+    if (tri_given[f1.idx] == kNoTag) {
+      const auto& ev = m.edge(EdgeId(e));
+      double ang = bend_angle(m.point(ev[0]), m.point(ev[1]), m.point(third_vertex(m, f1, EdgeId(e))),
+                              m.point(third_vertex(m, f2, EdgeId(e))));
+      if (ang > params.feature_angle_deg) continue;
+    }
+    uf.unite(f1.idx, f2.idx);
+  }
+  std::vector<std::int32_t> comp_of(nf, -1), comp_given;
+  std::vector<std::uint32_t> root_comp(nf, std::uint32_t(-1));
+  for (std::size_t f = 0; f < nf; ++f) {
+    if (!is_mf[f]) continue;
+    std::uint32_t r = uf.find(f);
+    if (root_comp[r] == std::uint32_t(-1)) {
+      root_comp[r] = std::uint32_t(comp_given.size());
+      comp_given.push_back(tri_given[f]);
+    }
+    comp_of[f] = std::int32_t(root_comp[r]);
+  }
+  std::vector<std::int32_t> face_tag = assign_tags(comp_given, max_face_tag);
+  auto& tri_class = TetMeshBuilder::triangle_class(m);
+  for (std::size_t f = 0; f < nf; ++f)
+    if (is_mf[f]) tri_class[f] = ModelRef{2, face_tag[comp_of[f]]};
+
+  // ---- model edges
+  std::vector<std::int32_t> edge_given(ne, kNoTag);
+  std::int32_t max_edge_tag = 0;
+  for (std::size_t i = 0; i < soup.edges.size(); ++i) {
+    VertexId a = remap(soup.edges[i].v[0], "edge", i), b = remap(soup.edges[i].v[1], "edge", i);
+    EdgeId e = m.find_edge(a, b);
+    if (!e.valid())
+      throw InputError(soup.source, "edge " + std::to_string(i + 1),
+                       "edge " + vlist({soup.edges[i].v[0], soup.edges[i].v[1]}) + " is not an edge of any tet");
+    edge_given[e.idx] = soup.edges[i].tag;
+    max_edge_tag = std::max(max_edge_tag, soup.edges[i].tag);
+  }
+  std::vector<char> is_me(ne, 0);
+  std::vector<std::vector<std::int32_t>> edge_faces(ne);  // distinct model face tags
+  for (std::size_t e = 0; e < ne; ++e) {
+    auto& tags = edge_faces[e];
+    for (std::uint32_t k = e_off[e]; k < e_off[e + 1]; ++k) tags.push_back(tri_class[e_tris[k].idx].tag);
+    std::sort(tags.begin(), tags.end());
+    tags.erase(std::unique(tags.begin(), tags.end()), tags.end());
+    const std::uint32_t n = e_off[e + 1] - e_off[e];
+    bool topo = n > 0 && (n != 2 || tags.size() >= 2);
+    if (topo && soup.full_classification && !soup.edges.empty() && edge_given[e] == kNoTag) {
+      const auto& v = m.edge(EdgeId(e));
+      throw InputError(soup.source, "edge " + vlist({v[0].idx, v[1].idx}),
+                       "contradiction: model faces meet at this edge but the file classifies it on no model edge");
+    }
+    is_me[e] = topo || edge_given[e] != kNoTag;
+  }
+  // Per-vertex incident model edges.
+  std::vector<std::vector<EdgeId>> v_me(nv);
+  for (std::size_t e = 0; e < ne; ++e)
+    if (is_me[e])
+      for (VertexId v : m.edge(EdgeId(e))) v_me[v.idx].push_back(EdgeId(e));
+  auto edge_key = [&](EdgeId e) { return std::make_pair(edge_given[e.idx], edge_faces[e.idx]); };
+
+  // ---- model vertices
+  std::vector<std::int32_t> corner_given(nv, kNoTag);
+  std::int32_t max_vertex_tag = 0;
+  for (std::size_t i = 0; i < soup.corners.size(); ++i) {
+    VertexId v = remap(soup.corners[i].v, "corner", i);
+    corner_given[v.idx] = soup.corners[i].tag;
+    max_vertex_tag = std::max(max_vertex_tag, soup.corners[i].tag);
+  }
+  std::vector<char> is_mv(nv, 0);
+  // Distinct model faces at each vertex (for vertices where faces touch without an edge).
+  std::vector<std::int32_t> v_face(nv, kNoTag);
+  std::vector<char> v_multi_face(nv, 0);
+  for (std::size_t f = 0; f < nf; ++f) {
+    if (!is_mf[f]) continue;
+    for (VertexId v : m.triangle(TriId(f))) {
+      std::int32_t t = tri_class[f].tag;
+      if (v_face[v.idx] == kNoTag) v_face[v.idx] = t;
+      else if (v_face[v.idx] != t) v_multi_face[v.idx] = 1;
+    }
+  }
+  for (std::size_t v = 0; v < nv; ++v) {
+    const auto& es = v_me[v];
+    bool mv = corner_given[v] != kNoTag;
+    if (es.empty()) {
+      mv = mv || v_multi_face[v];
+    } else if (es.size() != 2 || edge_key(es[0]) != edge_key(es[1])) {
+      mv = true;
+    } else if (edge_given[es[0].idx] == kNoTag) {
+      // Sharp corner between two model-edge segments (double geometry).
+      VertexId a = m.edge(es[0])[0] == VertexId(v) ? m.edge(es[0])[1] : m.edge(es[0])[0];
+      VertexId b = m.edge(es[1])[0] == VertexId(v) ? m.edge(es[1])[1] : m.edge(es[1])[0];
+      Vec3 d1 = m.point(VertexId(v)) - m.point(a), d2 = m.point(b) - m.point(VertexId(v));
+      double cs = dot(d1, d2) / (norm(d1) * norm(d2));
+      if (std::acos(std::clamp(cs, -1.0, 1.0)) * 180.0 / M_PI > params.feature_angle_deg) mv = true;
+    }
+    is_mv[v] = mv;
+  }
+  // Model edges: components of model-edge primal edges with equal keys, joined
+  // at vertices that are not model vertices.
+  UnionFind ue(ne);
+  for (std::size_t v = 0; v < nv; ++v)
+    if (!is_mv[v] && v_me[v].size() == 2) ue.unite(v_me[v][0].idx, v_me[v][1].idx);
+  std::vector<std::int32_t> ecomp(ne, -1), ecomp_given;
+  std::vector<std::uint32_t> eroot(ne, std::uint32_t(-1));
+  for (std::size_t e = 0; e < ne; ++e) {
+    if (!is_me[e]) continue;
+    std::uint32_t r = ue.find(e);
+    if (eroot[r] == std::uint32_t(-1)) {
+      eroot[r] = std::uint32_t(ecomp_given.size());
+      ecomp_given.push_back(edge_given[e]);
+    }
+    ecomp[e] = std::int32_t(eroot[r]);
+  }
+  std::vector<std::int32_t> edge_tag = assign_tags(ecomp_given, max_edge_tag);
+  auto& edge_class = TetMeshBuilder::edge_class(m);
+  for (std::size_t e = 0; e < ne; ++e) {
+    if (is_me[e]) {
+      edge_class[e] = ModelRef{1, edge_tag[ecomp[e]]};
+    } else if (e_off[e + 1] > e_off[e]) {
+      edge_class[e] = ModelRef{2, tri_class[e_tris[e_off[e]].idx].tag};
+    } else {
+      TetId t = m.vertex_tets(m.edge(EdgeId(e))[0]).front();
+      // any tet of the edge: an edge with no model-face triangle lies in one region
+      for (TetId s : m.vertex_tets(m.edge(EdgeId(e))[0]))
+        if (m.local_index(s, m.edge(EdgeId(e))[1]) >= 0) { t = s; break; }
+      edge_class[e] = ModelRef{3, m.region(t)};
+    }
+  }
+  std::vector<std::int32_t> vgiven;
+  std::vector<std::uint32_t> mv_list;
+  for (std::size_t v = 0; v < nv; ++v)
+    if (is_mv[v]) { mv_list.push_back(std::uint32_t(v)); vgiven.push_back(corner_given[v]); }
+  std::vector<std::int32_t> vtag = assign_tags(vgiven, max_vertex_tag);
+  auto& vclass = TetMeshBuilder::vertex_class(m);
+  for (std::size_t i = 0; i < mv_list.size(); ++i) vclass[mv_list[i]] = ModelRef{0, vtag[i]};
+  for (std::size_t v = 0; v < nv; ++v) {
+    if (is_mv[v]) continue;
+    if (!v_me[v].empty()) vclass[v] = edge_class[v_me[v][0].idx];
+    else if (v_face[v] != kNoTag) vclass[v] = ModelRef{2, v_face[v]};
+    else vclass[v] = ModelRef{3, m.region(m.vertex_tets(VertexId(v)).front())};
+  }
+
+  // ---- model topology
+  ModelTopology& topo = TetMeshBuilder::model(m);
+  std::map<std::int32_t, ModelEntity> regions, faces, edges, verts;
+  for (std::size_t t = 0; t < m.num_tets(); ++t) {
+    auto& r = regions[m.region(TetId(t))];
+    r.dim = 3;
+    r.tag = m.region(TetId(t));
+  }
+  for (std::size_t f = 0; f < nf; ++f) {
+    if (!is_mf[f]) continue;
+    auto& e = faces[tri_class[f].tag];
+    if (e.regions.empty()) {
+      e.dim = 2;
+      e.tag = tri_class[f].tag;
+      e.regions.push_back(key[f].r0);
+      if (key[f].r1 != kNoTag) e.regions.push_back(key[f].r1);
+      e.bounds = e.regions;
+      e.bounds.erase(std::unique(e.bounds.begin(), e.bounds.end()), e.bounds.end());
+    }
+  }
+  for (std::size_t e = 0; e < ne; ++e) {
+    if (!is_me[e]) continue;
+    auto& me = edges[edge_class[e].tag];
+    me.dim = 1;
+    me.tag = edge_class[e].tag;
+    me.bounds.insert(me.bounds.end(), edge_faces[e].begin(), edge_faces[e].end());
+  }
+  for (std::size_t v = 0; v < nv; ++v) {
+    if (!is_mv[v]) continue;
+    auto& mv = verts[vclass[v].tag];
+    mv.dim = 0;
+    mv.tag = vclass[v].tag;
+    for (EdgeId e : v_me[v]) mv.bounds.push_back(edge_class[e.idx].tag);
+  }
+  auto finish = [](std::map<std::int32_t, ModelEntity>& src, std::vector<ModelEntity>& dst) {
+    dst.clear();
+    for (auto& [tag, ent] : src) {
+      std::sort(ent.bounds.begin(), ent.bounds.end());
+      ent.bounds.erase(std::unique(ent.bounds.begin(), ent.bounds.end()), ent.bounds.end());
+      dst.push_back(std::move(ent));
+    }
+  };
+  finish(verts, topo.entities[0]);
+  finish(edges, topo.entities[1]);
+  finish(faces, topo.entities[2]);
+  finish(regions, topo.entities[3]);
+  return m;
+}
+
+}  // namespace polydual

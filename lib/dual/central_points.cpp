@@ -1,0 +1,72 @@
+#include "dual/central_points.h"
+
+#include <algorithm>
+
+#include "predicates/predicates.h"
+
+namespace polydual {
+
+namespace {
+bool in_closed_tet(const Point3& p, const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
+  // EXACT: p is in the closed positive tet iff no face sees it on its outer side.
+  return orient3d(p, b, c, d) != Sign::Negative && orient3d(a, p, c, d) != Sign::Negative &&
+         orient3d(a, b, p, d) != Sign::Negative && orient3d(a, b, c, p) != Sign::Negative;
+}
+}  // namespace
+
+CentralPoint tet_central_point(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
+  const Vec3 u = b - a, v = c - a, w = d - a;
+  const double D = dot(u, cross(v, w));
+  // c - a = (|u|^2 (v x w) + |v|^2 (w x u) + |w|^2 (u x v)) / (2D)   (rounded)
+  const Vec3 num = norm2(u) * cross(v, w) + norm2(v) * cross(w, u) + norm2(w) * cross(u, v);
+  const Point3 cc = a + num / (2.0 * D);
+  Sign s[4];
+  circumcenter_barycentric_signs(a, b, c, d, s);
+  if (s[0] != Sign::Negative && s[1] != Sign::Negative && s[2] != Sign::Negative &&
+      s[3] != Sign::Negative)
+    return {cc, true};
+  // Barycentric coordinates of the circumcenter (doubles): lambda_i = volume
+  // with vertex i replaced by cc, over D.
+  const double lam[4] = {dot(b - cc, cross(c - cc, d - cc)) / D, dot(cc - a, cross(v, w)) / D,
+                         dot(u, cross(cc - a, w)) / D, dot(u, cross(v, cc - a)) / D};
+  // Largest t in [0,1] with centroid + t (cc - centroid) in the tet: for each
+  // negative lambda_i, 1/4 + t (lambda_i - 1/4) >= 0.
+  double t = 1.0;
+  for (int i = 0; i < 4; ++i)
+    if (lam[i] < 0.25) t = std::min(t, 0.25 / (0.25 - lam[i]));
+  const Point3 g = a + 0.25 * (u + v + w);
+  Point3 p = g + t * (cc - g);
+  for (int iter = 0; iter < 64 && !in_closed_tet(p, a, b, c, d); ++iter) {
+    t *= (iter < 32 ? 1.0 - 1e-12 * double(1ull << std::min(iter, 40)) : 0.5);
+    p = g + t * (cc - g);
+  }
+  if (!in_closed_tet(p, a, b, c, d)) p = g;  // the rounded centroid of a non-flat tet
+  return {p, false};
+}
+
+CentralPoint triangle_central_point(const Point3& a, const Point3& b, const Point3& c) {
+  const Vec3 u = b - a, v = c - a;
+  // Barycentric weights of the circumcenter: w_A = |BC|^2 (B-A).(C-A), etc.
+  const double la = norm2(c - b) * dot(u, v);
+  const double lb = norm2(v) * dot(a - b, c - b);
+  const double lc = norm2(u) * dot(a - c, b - c);
+  const double sum = la + lb + lc;
+  Sign s[3];
+  triangle_circumcenter_barycentric_signs(a, b, c, s);
+  const bool wc = s[0] != Sign::Negative && s[1] != Sign::Negative && s[2] != Sign::Negative;
+  double wb = lb / sum, wcc = lc / sum, wa = la / sum;
+  if (!wc) {
+    double t = 1.0;
+    const double l[3] = {wa, wb, wcc};
+    for (double li : l)
+      if (li < 1.0 / 3) t = std::min(t, (1.0 / 3) / (1.0 / 3 - li));
+    wb = 1.0 / 3 + t * (wb - 1.0 / 3);
+    wcc = 1.0 / 3 + t * (wcc - 1.0 / 3);
+    wb = std::max(wb, 0.0);
+    wcc = std::max(wcc, 0.0);
+    if (wb + wcc > 1.0) { double k = 1.0 / (wb + wcc); wb *= k; wcc *= k; }
+  }
+  return {a + wb * u + wcc * v, wc};
+}
+
+}  // namespace polydual

@@ -1,0 +1,26 @@
+// Central points of tets and triangles (SPEC §4 steps 1-2, paper §2.4).
+#pragma once
+#include <array>
+
+#include "core/vec3.h"
+
+namespace polydual {
+
+struct CentralPoint {
+  Point3 p;
+  bool well_centred = false;  // EXACT: the closed simplex contains its circumcenter
+};
+
+// The circumcenter if the closed tet contains it (decided exactly), otherwise
+// the point where the segment centroid -> circumcenter leaves the tet. The
+// clamped point is verified to lie in the closed tet with exact orientation
+// tests (pulled towards the centroid until it does). The circumcenter's
+// coordinates themselves are rounded doubles.
+CentralPoint tet_central_point(const Point3& a, const Point3& b, const Point3& c, const Point3& d);
+
+// Same rule in the triangle's plane. Coordinates are computed as a + s(b-a) +
+// t(c-a), so a triangle lying in an axis-aligned plane gives points exactly in
+// that plane.
+CentralPoint triangle_central_point(const Point3& a, const Point3& b, const Point3& c);
+
+}  // namespace polydual
