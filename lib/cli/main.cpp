@@ -1,8 +1,60 @@
 // The polydual command (lib/cli): parses options, composes stages, prints.
+// Exit codes: 0 success, 1 error (bad input, I/O), 2 bad usage.
 #include <cstdio>
+#include <cstring>
+#include <new>
 #include <string>
 
+#include "cli/commands.h"
+#include "core/error.h"
+
+using namespace polydual;
+using namespace polydual::cli;
+
+namespace {
+struct Command {
+  const CommandSpec* spec;
+  int (*run)(const Args&);
+};
+const Command kCommands[] = {{&kDemo, cmd_demo},       {&kGenerate, cmd_generate}, {&kInfo, cmd_info},
+                             {&kConvert, cmd_convert}, {&kCheck, cmd_check},       {&kOptimize, cmd_optimize}};
+
+void usage(std::FILE* f) {
+  std::fprintf(f,
+               "polydual: polyhedral meshes of non-manifold domains from classified tet meshes\n"
+               "usage: polydual COMMAND [options]   (polydual COMMAND --help for details)\n\ncommands:\n");
+  for (const auto& c : kCommands) std::fprintf(f, "  %s\n", c.spec->synopsis.c_str());
+}
+}  // namespace
+
 int main(int argc, char** argv) {
-  if (argc < 2) { std::fprintf(stderr, "usage: polydual COMMAND ...\n"); return 2; }
-  return 0;
+  if (argc < 2) { usage(stderr); return 2; }
+  const std::string name = argv[1];
+  if (name == "-h" || name == "--help" || name == "help") { usage(stdout); return 0; }
+  for (const auto& c : kCommands) {
+    if (c.spec->name != name) continue;
+    try {
+      Args a = parse_args(*c.spec, argc - 2, argv + 2);
+      if (a.help) { std::fputs(help_text(*c.spec).c_str(), stdout); return 0; }
+      return c.run(a);
+    } catch (const UsageFailure& e) {
+      std::fprintf(stderr, "polydual %s: usage error: %s\n", name.c_str(), e.what());
+      return 2;
+    } catch (const UsageError& e) {
+      std::fprintf(stderr, "polydual %s: usage error: %s\n", name.c_str(), e.what());
+      return 2;
+    } catch (const InputError& e) {
+      std::fprintf(stderr, "polydual %s: error: %s\n", name.c_str(), e.what());
+      return 1;
+    } catch (const std::bad_alloc&) {
+      std::fprintf(stderr, "polydual %s: error: out of memory\n", name.c_str());
+      return 1;
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "polydual %s: error: %s\n", name.c_str(), e.what());
+      return 1;
+    }
+  }
+  std::fprintf(stderr, "polydual: unknown command '%s'\n", name.c_str());
+  usage(stderr);
+  return 2;
 }

@@ -1,0 +1,109 @@
+#include "cli/pipeline.h"
+
+#include <map>
+
+#include "core/error.h"
+#include "io/foam_writer.h"
+#include "io/read_tet_mesh.h"
+#include "io/vtu_poly_writer.h"
+#include "mesh/validate.h"
+
+namespace polydual::cli {
+
+ClassifiedTetMesh load_classified(const std::string& path, const ClassifyParams& params, Json& seconds) {
+  Timer t;
+  TetSoup soup = read_tet_mesh(path);
+  seconds.set("read", t.seconds());
+  Timer t2;
+  ClassifiedTetMesh m = classify(soup, params);
+  seconds.set("classify", t2.seconds());
+  return m;
+}
+
+Json model_summary(const ClassifiedTetMesh& m) {
+  Json model = Json::object();
+  model.set("vertices", m.model().count(0));
+  model.set("edges", m.model().count(1));
+  model.set("faces", m.model().count(2));
+  model.set("regions", m.model().count(3));
+  Json faces = Json::array();
+  for (const ModelEntity& f : m.model().entities[2]) {
+    Json o = Json::object();
+    o.set("tag", f.tag);
+    const char* kind = f.regions.size() < 2 ? "external" : (f.regions[0] == f.regions[1] ? "fracture" : "interface");
+    o.set("kind", kind);
+    Json r = Json::array();
+    for (auto x : f.bounds) r.push(x);
+    o.set("regions", r);
+    faces.push(o);
+  }
+  model.set("face_list", faces);
+  return model;
+}
+
+Json poly_summary(const PolyMesh& pm, const std::vector<CellVerdict>& verdicts, const ClassifiedTetMesh* primal) {
+  ValidationReport rep = validate(pm, primal);
+  Json j = Json::object();
+  j.set("cells", pm.num_cells());
+  j.set("faces", pm.num_faces());
+  j.set("points", pm.num_points());
+  std::size_t invalid = 0;
+  for (const auto& v : verdicts) invalid += !v.valid;
+  j.set("invalid_cells", invalid);
+  j.set("closed_cells", rep.closed_cells);
+  j.set("slit_cells", rep.slit_cells);
+  j.set("face_errors", rep.face_errors);
+  j.set("negative_volume_cells", rep.negative_volume_cells);
+  // Per material: cells, dual volume (decomposition, double), primal volume.
+  std::map<std::int32_t, std::size_t> cells;
+  std::map<std::int32_t, double> primal_vol;
+  for (auto m : pm.cell_material) ++cells[m];
+  if (primal)
+    for (std::size_t t = 0; t < primal->num_tets(); ++t) primal_vol[primal->region(TetId(t))] += primal->tet_volume(TetId(t));
+  Json mats = Json::array();
+  for (auto& [tag, n] : cells) {
+    Json o = Json::object();
+    o.set("tag", tag);
+    o.set("cells", n);
+    o.set("volume", rep.material_volume[tag]);
+    if (primal) o.set("primal_volume", primal_vol[tag]);
+    mats.push(o);
+  }
+  j.set("materials", mats);
+  Json miss = Json::array();
+  for (auto& s : rep.missing_model_entities) miss.push(s);
+  j.set("missing_model_entities", miss);
+  j.set("topology_ok", rep.ok());
+  return j;
+}
+
+std::string output_format(const std::string& requested, const std::string& out) {
+  if (!requested.empty()) {
+    if (requested != "vtu" && requested != "foam")
+      throw UsageError("--format must be vtu or foam, not '" + requested + "'");
+    return requested;
+  }
+  if (out.size() >= 4 && out.compare(out.size() - 4, 4, ".vtu") == 0) return "vtu";
+  return out.find('.') == std::string::npos || out.back() == '/' ? "foam" : "vtu";
+}
+
+Json write_poly(const PolyMesh& pm, const std::vector<CellVerdict>& verdicts, const std::string& out,
+                const std::string& format) {
+  Json rec = Json::object();
+  rec.set("path", out);
+  rec.set("format", format);
+  if (format == "foam") {
+    FoamReport r = write_foam(pm, out);
+    rec.set("foam", r.to_json());
+  } else {
+    std::vector<std::int32_t> valid(pm.num_cells()), bad(pm.num_cells());
+    for (std::size_t c = 0; c < verdicts.size(); ++c) {
+      valid[c] = verdicts[c].valid;
+      bad[c] = verdicts[c].bad_tets;
+    }
+    write_vtu_poly(pm, out, {CellField{"valid", valid}, CellField{"bad_tets", bad}}, VtuOptions{true});
+  }
+  return rec;
+}
+
+}  // namespace polydual::cli

@@ -1,0 +1,307 @@
+#include "io/foam_writer.h"
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <filesystem>
+#include <map>
+#include <span>
+#include <ostream>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+
+namespace polydual {
+
+Json FoamReport::to_json() const {
+  Json j = Json::object();
+  j.set("points", points);
+  j.set("cells", cells);
+  j.set("faces", faces);
+  j.set("internal_faces", internal_faces);
+  j.set("patches", patches);
+  j.set("cell_zones", cell_zones);
+  j.set("face_zones", face_zones);
+  j.set("dropped_slit_faces", dropped_slit_faces);
+  j.set("dropped_points", dropped_points);
+  j.set("faces_without_spurs", faces_without_spurs);
+  j.set("dropped_degenerate_faces", dropped_degenerate_faces);
+  return j;
+}
+
+namespace {
+
+namespace fs = std::filesystem;
+using Label = std::int64_t;
+
+// A face as OpenFOAM will see it.
+struct OutFace {
+  FaceId source;
+  Label owner = -1, neighbour = -1;  // neighbour -1 on the boundary
+  bool flipped = false;              // loop reversed w.r.t. the PolyMesh
+  std::vector<PointId> loop;         // as OpenFOAM gets it (flipped, spurs removed)
+};
+
+// The loop without spurs: "a b a" (out to b and straight back) and repeated
+// "a a". OpenFOAM rejects a face that lists a point twice; a spur encloses no
+// area and its two edge uses cancel within the face, so removing it changes
+// neither the face's area vector nor any cell's closedness. The dual has such
+// faces where a cap passes twice through the midpoint of a model edge (e.g.
+// around the corner where a fracture's free edge meets a wall). Other repeats
+// (a loop pinched into two lobes) are left for checkMesh to report.
+std::vector<PointId> without_spurs(std::span<const PointId> face) {
+  std::vector<PointId> loop(face.begin(), face.end());
+  for (bool changed = true; changed && loop.size() >= 3;) {
+    changed = false;
+    const std::size_t n = loop.size();
+    for (std::size_t i = 0; i < n && !changed; ++i) {
+      const std::size_t next = (i + 1) % n, prev = (i + n - 1) % n;
+      if (loop[i] == loop[next]) {  // "a a"
+        loop.erase(loop.begin() + static_cast<long>(i));
+        changed = true;
+      } else if (loop[prev] == loop[next]) {  // "a b a": drop b and one a
+        const std::size_t hi = std::max(i, next), lo = std::min(i, next);
+        loop.erase(loop.begin() + static_cast<long>(hi));
+        loop.erase(loop.begin() + static_cast<long>(lo));
+        changed = true;
+      }
+    }
+  }
+  return loop;
+}
+
+struct Patch { std::string name; Label start = 0, size = 0; };
+struct FaceZone { std::string name; std::vector<Label> faces; std::vector<bool> flip; };
+
+// The whole case in OpenFOAM numbering, computed before touching the disk.
+struct FoamCase {
+  std::vector<Label> point_map;  // PolyMesh point -> OpenFOAM point, -1 if dropped
+  std::vector<PointId> points;   // OpenFOAM point -> PolyMesh point
+  std::vector<OutFace> faces;
+  Label internal = 0;
+  std::vector<Patch> patches;
+  std::map<std::int32_t, std::vector<Label>> cell_zones;
+  std::vector<FaceZone> face_zones;
+};
+
+FoamCase build_case(const PolyMesh& m, FoamReport& report) {
+  FoamCase fc;
+  std::vector<OutFace> internal;
+  std::map<std::pair<int, std::int32_t>, std::vector<OutFace>> boundary;  // (0 tag | 1 default)
+  for (std::size_t f = 0; f < m.num_faces(); ++f) {
+    const CellId o = m.face_owner[f], n = m.face_neighbour[f];
+    if (!o.valid() && !n.valid())
+      throw InputError("<memory>", "face " + std::to_string(f), "belongs to no cell");
+    if (o == n) { ++report.dropped_slit_faces; continue; }
+    OutFace out;
+    out.source = FaceId(f);
+    out.loop = without_spurs(m.face(FaceId(f)));
+    if (out.loop.size() < 3) { ++report.dropped_degenerate_faces; continue; }
+    if (out.loop.size() != m.face(FaceId(f)).size()) ++report.faces_without_spurs;
+    if (o.valid() && n.valid()) {
+      out.flipped = o > n;
+      out.owner = std::min(o, n).idx;
+      out.neighbour = std::max(o, n).idx;
+      if (out.flipped) std::reverse(out.loop.begin(), out.loop.end());
+      internal.push_back(std::move(out));
+    } else {
+      out.flipped = !o.valid();
+      out.owner = o.valid() ? o.idx : n.idx;
+      const bool external = m.face_kind[f] == FaceKind::External;
+      if (out.flipped) std::reverse(out.loop.begin(), out.loop.end());
+      boundary[{external ? 0 : 1, external ? m.face_tag[f] : 0}].push_back(std::move(out));
+    }
+  }
+  // Upper-triangular order; faces arrive in id order, so a stable sort breaks
+  // ties (two faces between the same two cells) by PolyMesh face id.
+  std::stable_sort(internal.begin(), internal.end(), [](const OutFace& a, const OutFace& b) {
+    return std::tie(a.owner, a.neighbour) < std::tie(b.owner, b.neighbour);
+  });
+  fc.faces = std::move(internal);
+  fc.internal = static_cast<Label>(fc.faces.size());
+  for (auto& [key, list] : boundary) {
+    fc.patches.push_back({key.first == 0 ? "face_" + std::to_string(key.second) : "defaultFaces",
+                          static_cast<Label>(fc.faces.size()), static_cast<Label>(list.size())});
+    fc.faces.insert(fc.faces.end(), list.begin(), list.end());
+  }
+
+  // Keep only points that a kept face uses, in PolyMesh order.
+  fc.point_map.assign(m.num_points(), -1);
+  for (const OutFace& f : fc.faces)
+    for (PointId p : f.loop) fc.point_map[p.idx] = 0;
+  for (std::size_t p = 0; p < m.num_points(); ++p)
+    if (fc.point_map[p] == 0) {
+      fc.point_map[p] = static_cast<Label>(fc.points.size());
+      fc.points.push_back(PointId(p));
+    }
+
+  for (std::size_t c = 0; c < m.num_cells(); ++c)
+    fc.cell_zones[m.cell_material[c]].push_back(static_cast<Label>(c));
+  std::map<std::pair<FaceKind, std::int32_t>, FaceZone> zones;
+  for (std::size_t i = 0; i < fc.faces.size(); ++i) {
+    const OutFace& f = fc.faces[i];
+    const FaceKind kind = m.face_kind[f.source.idx];
+    if (kind != FaceKind::Interface && kind != FaceKind::Fracture) continue;
+    const std::int32_t tag = m.face_tag[f.source.idx];
+    FaceZone& z = zones[{kind, tag}];
+    z.name = (kind == FaceKind::Interface ? "interface_" : "fracture_") + std::to_string(tag);
+    bool flip = f.flipped;  // keep the PolyMesh orientation...
+    if (kind == FaceKind::Interface && f.neighbour >= 0) {  // ...or lower -> higher material
+      const auto mo = m.cell_material[static_cast<std::size_t>(f.owner)];
+      const auto mn = m.cell_material[static_cast<std::size_t>(f.neighbour)];
+      if (mo != mn) flip = mo > mn;
+    }
+    z.faces.push_back(static_cast<Label>(i));
+    z.flip.push_back(flip);
+  }
+  for (auto& [key, z] : zones) fc.face_zones.push_back(std::move(z));
+
+  report.points = fc.points.size();
+  report.dropped_points = m.num_points() - fc.points.size();
+  report.cells = m.num_cells();
+  report.faces = fc.faces.size();
+  report.internal_faces = static_cast<std::size_t>(fc.internal);
+  report.patches = fc.patches.size();
+  report.cell_zones = fc.cell_zones.size();
+  report.face_zones = fc.face_zones.size();
+  return fc;
+}
+
+// 17 significant digits: every double survives the decimal round trip exactly.
+void put_real(std::ostream& os, double v) {
+  std::array<char, 32> buf;
+  auto r = std::to_chars(buf.data(), buf.data() + buf.size(), v, std::chars_format::general, 17);
+  os.write(buf.data(), r.ptr - buf.data());
+}
+
+void write_foam_file(const fs::path& file, const std::string& cls, const std::string& location,
+                     const std::string& note, const std::function<void(std::ostream&)>& body) {
+  write_file_atomically(file, [&](std::ostream& os) {
+    os << "/*--------------------------------*- C++ -*----------------------------------*\\\n"
+       << "  Written by polydual\n"
+       << "\\*---------------------------------------------------------------------------*/\n"
+       << "FoamFile\n{\n    version     2.0;\n    format      ascii;\n"
+       << "    class       " << cls << ";\n";
+    if (!note.empty()) os << "    note        \"" << note << "\";\n";
+    os << "    location    \"" << location << "\";\n"
+       << "    object      " << file.filename().string() << ";\n}\n"
+       << "// * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //\n\n";
+    body(os);
+    os << "\n// ************************************************************************* //\n";
+  });
+}
+
+template <class T>
+void put_inline_list(std::ostream& os, const char* type, const std::vector<T>& v) {
+  os << "List<" << type << "> " << v.size() << "(";
+  for (std::size_t i = 0; i < v.size(); ++i) os << (i ? " " : "") << static_cast<Label>(v[i]);
+  os << ");\n";
+}
+
+void write_poly_mesh(const PolyMesh& m, const FoamCase& fc, const fs::path& dir,
+                     const FoamOptions& opt) {
+  const std::string loc = "constant/polyMesh";
+  // checkMesh and the decomposition tools read these counts from the owner note.
+  const std::string note = "nPoints:" + std::to_string(fc.points.size()) +
+                           "  nCells:" + std::to_string(m.num_cells()) +
+                           "  nFaces:" + std::to_string(fc.faces.size()) +
+                           "  nInternalFaces:" + std::to_string(fc.internal);
+  write_foam_file(dir / "points", "vectorField", loc, "", [&](std::ostream& os) {
+    os << fc.points.size() << "\n(\n";
+    for (PointId p : fc.points) {
+      const Point3& x = m.points[p.idx];
+      os << '(';
+      put_real(os, x.x); os << ' ';
+      put_real(os, x.y); os << ' ';
+      put_real(os, x.z); os << ")\n";
+    }
+    os << ")\n";
+  });
+  write_foam_file(dir / "faces", "faceList", loc, "", [&](std::ostream& os) {
+    os << fc.faces.size() << "\n(\n";
+    for (const OutFace& f : fc.faces) {
+      os << f.loop.size() << '(';
+      for (std::size_t k = 0; k < f.loop.size(); ++k)
+        os << (k ? " " : "") << fc.point_map[f.loop[k].idx];
+      os << ")\n";
+    }
+    os << ")\n";
+  });
+  write_foam_file(dir / "owner", "labelList", loc, note, [&](std::ostream& os) {
+    os << fc.faces.size() << "\n(\n";
+    for (const OutFace& f : fc.faces) os << f.owner << '\n';
+    os << ")\n";
+  });
+  write_foam_file(dir / "neighbour", "labelList", loc, note, [&](std::ostream& os) {
+    os << fc.internal << "\n(\n";
+    for (Label i = 0; i < fc.internal; ++i) os << fc.faces[static_cast<std::size_t>(i)].neighbour << '\n';
+    os << ")\n";
+  });
+  write_foam_file(dir / "boundary", "polyBoundaryMesh", loc, "", [&](std::ostream& os) {
+    os << fc.patches.size() << "\n(\n";
+    for (const Patch& p : fc.patches)
+      os << "    " << p.name << "\n    {\n        type            "
+         << (p.name == "defaultFaces" ? "patch" : opt.patch_type) << ";\n"
+         << "        nFaces          " << p.size << ";\n        startFace       " << p.start
+         << ";\n    }\n";
+    os << ")\n";
+  });
+  write_foam_file(dir / "cellZones", "regIOobject", loc, "", [&](std::ostream& os) {
+    os << fc.cell_zones.size() << "\n(\n";
+    for (const auto& [tag, cells] : fc.cell_zones) {
+      os << "material_" << tag << "\n{\n    type cellZone;\ncellLabels      ";
+      put_inline_list(os, "label", cells);
+      os << "}\n";
+    }
+    os << ")\n";
+  });
+  write_foam_file(dir / "faceZones", "regIOobject", loc, "", [&](std::ostream& os) {
+    os << fc.face_zones.size() << "\n(\n";
+    for (const FaceZone& z : fc.face_zones) {
+      os << z.name << "\n{\n    type faceZone;\nfaceLabels      ";
+      put_inline_list(os, "label", z.faces);
+      os << "flipMap         ";
+      put_inline_list(os, "bool", z.flip);
+      os << "}\n";
+    }
+    os << ")\n";
+  });
+}
+
+// The smallest system/ that lets OpenFOAM utilities open the case.
+void write_system(const fs::path& dir) {
+  write_foam_file(dir / "controlDict", "dictionary", "system", "", [](std::ostream& os) {
+    os << "application     polydual;\nstartFrom       startTime;\nstartTime       0;\n"
+          "stopAt          endTime;\nendTime         1;\ndeltaT          1;\n"
+          "writeControl    timeStep;\nwriteInterval   1;\nwriteFormat     ascii;\n"
+          "writePrecision  17;\n";
+  });
+  write_foam_file(dir / "fvSchemes", "dictionary", "system", "", [](std::ostream& os) {
+    os << "ddtSchemes { default steadyState; }\ngradSchemes { default Gauss linear; }\n"
+          "divSchemes { default none; }\nlaplacianSchemes { default Gauss linear corrected; }\n"
+          "interpolationSchemes { default linear; }\nsnGradSchemes { default corrected; }\n";
+  });
+  write_foam_file(dir / "fvSolution", "dictionary", "system", "", [](std::ostream& os) {
+    os << "solvers { }\n";
+  });
+}
+
+}  // namespace
+
+FoamReport write_foam(const PolyMesh& mesh, const std::string& case_dir, const FoamOptions& options) {
+  if (options.patch_type.empty() || options.patch_type.find_first_of(" ;{}\"") != std::string::npos)
+    throw UsageError("write_foam: bad patch type '" + options.patch_type + "'");
+  FoamReport report;
+  const FoamCase fc = build_case(mesh, report);
+  write_directory_atomically(case_dir, [&](const fs::path& tmp) {
+    fs::create_directories(tmp / "constant" / "polyMesh");
+    write_poly_mesh(mesh, fc, tmp / "constant" / "polyMesh", options);
+    if (options.write_system) {
+      fs::create_directories(tmp / "system");
+      write_system(tmp / "system");
+    }
+  });
+  return report;
+}
+
+}  // namespace polydual

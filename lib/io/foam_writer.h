@@ -1,0 +1,59 @@
+// OpenFOAM polyMesh writer (SPEC §9): CASE/constant/polyMesh/{points, faces,
+// owner, neighbour, boundary, cellZones, faceZones} plus, optionally, a minimal
+// CASE/system so OpenFOAM's tools (checkMesh) run on the case.
+//
+// OpenFOAM's rules, and what this writer does to meet them:
+//  - owner < neighbour on every internal face, the face normal pointing from
+//    owner to neighbour: faces whose PolyMesh owner is the larger cell are
+//    flipped (loop reversed);
+//  - internal faces first, in upper-triangular order (by owner, then neighbour;
+//    ties by PolyMesh face id), then boundary faces grouped by patch;
+//  - one patch per external model face tag, "face_<tag>", increasing tag order;
+//    boundary faces that are not FaceKind::External (should not happen in a valid
+//    dual) go to a last patch "defaultFaces";
+//  - a slit face (owner == neighbour, at fracture tips) has no OpenFOAM form: it
+//    is dropped (its cell lists it twice in opposite senses, so the cell stays
+//    closed), and points used only by dropped faces are dropped too (checkMesh
+//    fails on unused points);
+//  - OpenFOAM rejects a face that repeats a point: spurs "a b a" (zero area,
+//    e.g. a cap passing twice through a model-edge midpoint) are cut out of the
+//    loop, and a face left with < 3 points is dropped (both counted);
+//  - cellZones "material_<tag>" per material; faceZones "interface_<tag>" and
+//    "fracture_<tag>" per Interface/Fracture face tag. flipMap: an interface
+//    zone is oriented from the lower material tag to the higher; a fracture zone
+//    keeps the PolyMesh orientation (owner -> neighbour) of each face.
+// Points carry 17 significant digits (exact double round trip).
+#pragma once
+#include <cstddef>
+#include <string>
+
+#include "core/json.h"
+#include "mesh/poly_mesh.h"
+
+namespace polydual {
+
+struct FoamOptions {
+  // OpenFOAM patch type of the external patches ("patch" or "wall").
+  std::string patch_type = "patch";
+  // Also write system/{controlDict,fvSchemes,fvSolution} (OpenFOAM tools need them).
+  bool write_system = true;
+};
+
+struct FoamReport {
+  std::size_t points = 0, cells = 0, faces = 0, internal_faces = 0;
+  std::size_t patches = 0, cell_zones = 0, face_zones = 0;
+  std::size_t dropped_slit_faces = 0;  // owner == neighbour faces left out
+  std::size_t dropped_points = 0;      // points used only by dropped faces / spurs
+  std::size_t faces_without_spurs = 0;       // faces written with spurs removed
+  std::size_t dropped_degenerate_faces = 0;  // faces that were nothing but spurs
+  Json to_json() const;
+};
+
+// Writes the case into `case_dir` atomically: the whole tree is built in a
+// temporary directory beside it and renamed into place, replacing an existing
+// `case_dir`; on any failure nothing is left behind and the error propagates.
+// Throws InputError("<memory>", "face N", ...) for a face without any cell.
+FoamReport write_foam(const PolyMesh& mesh, const std::string& case_dir,
+                      const FoamOptions& options = {});
+
+}  // namespace polydual

@@ -1,0 +1,44 @@
+// VTK XML UnstructuredGrid (.vtu, version 1.0) writer for PolyMesh (SPEC §9):
+// one VTK_POLYHEDRON cell per dual cell, opens in ParaView and is read back
+// exactly by read_vtu_poly (lib/io/vtu_poly_reader.h).
+//
+// File contents:
+//   CellData   material (Int32), primal_vertex (Int64, -1 when none), then the
+//              caller's extra arrays (e.g. "valid", "bad_tets") in the given order;
+//   PointData  class_dim (Int8), class_tag (Int32): each point's model entity;
+//   Cells      connectivity/offsets (the cell's distinct points, first-seen order),
+//              types (42), faces/faceoffsets (per cell: nFaces, then nPts ids...,
+//              each face in the cell's outward orientation);
+//   FieldData  face_kind, face_tag (Int32): one entry per (cell, local face) in
+//              faces-stream order, because VTK has no face attributes and the
+//              reader needs the model classification of every face.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "mesh/poly_mesh.h"
+
+namespace polydual {
+
+// A caller-supplied cell array, one value per cell.
+struct CellField {
+  std::string name;
+  std::variant<std::vector<double>, std::vector<std::int32_t>> values;  // Float64 or Int32
+};
+
+struct VtuOptions {
+  // false: every array as ASCII text (doubles with 17 significant digits);
+  // true: "binary" = base64 of the raw little-endian bytes, no compression,
+  // about half the size and faster to parse.
+  bool binary = false;
+};
+
+// Writes `mesh` to `path` atomically (no half-written file on failure).
+// Same mesh and options -> same bytes. Throws UsageError when an extra field's
+// size differs from the cell count or its name clashes with a built-in array.
+void write_vtu_poly(const PolyMesh& mesh, const std::string& path,
+                    const std::vector<CellField>& extra = {}, const VtuOptions& options = {});
+
+}  // namespace polydual

@@ -1,0 +1,396 @@
+// Tests for the PolyMesh writers/readers (lib/io/vtu_poly_*, lib/io/foam_writer):
+// hand-built hex meshes, VTU round trip and determinism, OpenFOAM ordering
+// rules, zones, atomicity, and OpenFOAM's own checkMesh when it is installed.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <tuple>
+#include <unistd.h>
+
+#include "core/error.h"
+#include "io/foam_writer.h"
+#include "io/vtu_poly_reader.h"
+#include "io/vtu_poly_writer.h"
+
+namespace polydual {
+namespace {
+
+namespace fs = std::filesystem;
+
+// An nx*ny*nz block of unit hexes. Interior faces between cells of different
+// materials are Interface faces (tag 7); boundary faces are External with tag
+// 1..6 (-x, +x, -y, +y, -z, +z). Cell c = i + nx*(j + ny*k), primal vertex = c.
+PolyMesh hex_block(int nx, int ny, int nz, const std::vector<std::int32_t>& material) {
+  PolyMesh m;
+  auto pid = [&](int i, int j, int k) { return PointId(i + (nx + 1) * (j + (ny + 1) * k)); };
+  auto cid = [&](int i, int j, int k) { return CellId(i + nx * (j + ny * k)); };
+  for (int k = 0; k <= nz; ++k)
+    for (int j = 0; j <= ny; ++j)
+      for (int i = 0; i <= nx; ++i) {
+        const int on = (i == 0 || i == nx) + (j == 0 || j == ny) + (k == 0 || k == nz);
+        m.add_point({0.1 * i, 0.1 * j + 1.0 / 3.0, 0.1 * k},
+                    ModelRef{static_cast<std::int8_t>(3 - on), on});
+      }
+  std::vector<std::vector<HalfFace>> cells(static_cast<std::size_t>(nx * ny * nz));
+  // The face at i/j/k = s on axis `axis`, spanning cell (a, b) in the other two;
+  // its loop has a +axis normal (right-hand rule).
+  auto add = [&](int axis, int s, int a, int b) {
+    auto at = [&](int da, int db) {
+      std::array<int, 3> q{};
+      q[axis] = s;
+      q[(axis + 1) % 3] = a + da;
+      q[(axis + 2) % 3] = b + db;
+      return pid(q[0], q[1], q[2]);
+    };
+    std::vector<PointId> loop{at(0, 0), at(1, 0), at(1, 1), at(0, 1)};
+    const int n[3] = {nx, ny, nz};
+    std::array<int, 3> below{}, above{};
+    below[axis] = s - 1; above[axis] = s;
+    below[(axis + 1) % 3] = above[(axis + 1) % 3] = a;
+    below[(axis + 2) % 3] = above[(axis + 2) % 3] = b;
+    if (s == 0 || s == n[axis]) {  // boundary: outward normal of the one cell
+      const bool low = s == 0;
+      const CellId c = low ? cid(above[0], above[1], above[2]) : cid(below[0], below[1], below[2]);
+      if (low) std::reverse(loop.begin(), loop.end());
+      const FaceId f = m.add_face(loop, c, CellId::invalid(), FaceKind::External, 2 * axis + (low ? 1 : 2));
+      cells[c.idx].push_back(HalfFace(f, 0));
+      return;
+    }
+    const CellId c0 = cid(below[0], below[1], below[2]), c1 = cid(above[0], above[1], above[2]);
+    const bool iface = material[c0.idx] != material[c1.idx];
+    const FaceId f = m.add_face(loop, c0, c1, iface ? FaceKind::Interface : FaceKind::Interior,
+                                iface ? 7 : 0);
+    cells[c0.idx].push_back(HalfFace(f, 0));
+    cells[c1.idx].push_back(HalfFace(f, 1));
+  };
+  for (int s = 0; s <= nx; ++s) for (int a = 0; a < ny; ++a) for (int b = 0; b < nz; ++b) add(0, s, a, b);
+  for (int s = 0; s <= ny; ++s) for (int a = 0; a < nz; ++a) for (int b = 0; b < nx; ++b) add(1, s, a, b);
+  for (int s = 0; s <= nz; ++s) for (int a = 0; a < nx; ++a) for (int b = 0; b < ny; ++b) add(2, s, a, b);
+  for (std::size_t c = 0; c < cells.size(); ++c) m.add_cell(cells[c], material[c], VertexId(c));
+  return m;
+}
+
+PolyMesh unit_cube() { return hex_block(1, 1, 1, {4}); }
+PolyMesh two_materials() { return hex_block(2, 1, 1, {1, 2}); }
+PolyMesh block8() { return hex_block(2, 2, 2, std::vector<std::int32_t>(8, 1)); }
+
+// The unit cube with an inner quad listed twice by its cell in opposite senses
+// (a slit face, as at a fracture tip), on four points used by nothing else.
+PolyMesh cube_with_slit() {
+  PolyMesh m = hex_block(1, 1, 1, {4});
+  std::vector<PointId> loop;
+  for (auto [y, z] : {std::pair{0.3, 0.3}, {0.7, 0.3}, {0.7, 0.7}, {0.3, 0.7}})
+    loop.push_back(m.add_point({0.05, 0.1 * y + 1.0 / 3.0, 0.1 * z}, ModelRef{2, 9}));
+  const FaceId f = m.add_face(loop, CellId(0), CellId(0), FaceKind::Fracture, 9);
+  m.cell_faces.push_back(HalfFace(f, 0));  // the cell is the last one: extend it
+  m.cell_faces.push_back(HalfFace(f, 1));
+  m.cell_offsets.back() += 2;
+  return m;
+}
+
+// The unit cube whose first face passes twice through one of its corners with a
+// spur out to an extra point, like the dual's caps through a model-edge midpoint:
+// loop (b c d a b x) for the quad (a b c d).
+PolyMesh cube_with_spur() {
+  PolyMesh m = hex_block(1, 1, 1, {4});
+  const PointId x = m.add_point({-0.05, 0.4, 0.05}, ModelRef{0, 3});
+  std::vector<PointId> q(m.face(FaceId(0u)).begin(), m.face(FaceId(0u)).end());
+  const std::vector<PointId> loop{q[1], q[2], q[3], q[0], q[1], x};
+  m.face_points.erase(m.face_points.begin(), m.face_points.begin() + 4);
+  m.face_points.insert(m.face_points.begin(), loop.begin(), loop.end());
+  for (std::size_t f = 1; f < m.face_offsets.size(); ++f) m.face_offsets[f] += 2;
+  return m;
+}
+
+fs::path scratch_root() {
+  return fs::temp_directory_path() / ("polydual_poly_io_" + std::to_string(::getpid()));
+}
+// Removes this process's scratch directory once all tests have run.
+struct ScratchCleanup : ::testing::Environment {
+  void TearDown() override {
+    std::error_code ec;
+    fs::remove_all(scratch_root(), ec);
+  }
+};
+[[maybe_unused]] const auto* const kCleanup = ::testing::AddGlobalTestEnvironment(new ScratchCleanup);
+
+fs::path scratch(const std::string& name) {
+  fs::path p = scratch_root() / name;
+  fs::remove_all(p);
+  fs::create_directories(p.parent_path());
+  return p;
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// A face identified by its cells and its loop up to rotation, in the owner's sense.
+using FaceSig = std::tuple<std::uint32_t, std::uint32_t, std::vector<std::uint32_t>, int, int>;
+std::multiset<FaceSig> face_signatures(const PolyMesh& m) {
+  std::multiset<FaceSig> out;
+  for (std::size_t f = 0; f < m.num_faces(); ++f) {
+    std::vector<std::uint32_t> loop;
+    for (PointId p : m.face(FaceId(f))) loop.push_back(p.idx);
+    std::rotate(loop.begin(), std::min_element(loop.begin(), loop.end()), loop.end());
+    out.insert({m.face_owner[f].idx, m.face_neighbour[f].idx, loop,
+                static_cast<int>(m.face_kind[f]), m.face_tag[f]});
+  }
+  return out;
+}
+
+void expect_same_mesh(const PolyMesh& a, const PolyMesh& b) {
+  ASSERT_EQ(a.num_points(), b.num_points());
+  for (std::size_t i = 0; i < a.num_points(); ++i) {  // bit-exact coordinates
+    EXPECT_EQ(std::memcmp(&a.points[i], &b.points[i], sizeof(Point3)), 0) << "point " << i;
+    EXPECT_EQ(a.point_class[i], b.point_class[i]) << "point " << i;
+  }
+  EXPECT_EQ(a.cell_material, b.cell_material);
+  EXPECT_EQ(a.cell_primal, b.cell_primal);
+  EXPECT_EQ(face_signatures(a), face_signatures(b));
+  ASSERT_EQ(a.num_cells(), b.num_cells());
+  for (std::size_t c = 0; c < a.num_cells(); ++c)  // same outward loops per cell
+    for (std::size_t k = 0; k < a.cell(CellId(c)).size(); ++k)
+      EXPECT_EQ(a.oriented_loop(a.cell(CellId(c))[k]), b.oriented_loop(b.cell(CellId(c))[k]));
+}
+
+TEST(VtuPoly, RoundTripAsciiAndBinary) {
+  for (bool binary : {false, true})
+    for (const PolyMesh& m : {unit_cube(), two_materials(), block8(), cube_with_slit(), cube_with_spur()}) {
+      const fs::path p = scratch(binary ? "m_bin.vtu" : "m.vtu");
+      write_vtu_poly(m, p.string(), {}, VtuOptions{binary});
+      expect_same_mesh(m, read_vtu_poly(p.string()));
+    }
+}
+
+TEST(VtuPoly, SlitFaceComesBackAsOwnerEqualsNeighbour) {
+  const fs::path p = scratch("slit.vtu");
+  write_vtu_poly(cube_with_slit(), p.string());
+  const PolyMesh r = read_vtu_poly(p.string());
+  ASSERT_EQ(r.num_faces(), 7u);
+  EXPECT_EQ(r.face_owner[6], r.face_neighbour[6]);
+  EXPECT_EQ(r.face_kind[6], FaceKind::Fracture);
+}
+
+TEST(VtuPoly, ContentsAndExtraFields) {
+  const PolyMesh m = two_materials();
+  const fs::path p = scratch("extra.vtu");
+  write_vtu_poly(m, p.string(),
+                 {{"valid", std::vector<std::int32_t>{1, 0}}, {"q", std::vector<double>{0.5, 0.25}}});
+  const std::string s = slurp(p);
+  for (const char* needle :
+       {"NumberOfPoints=\"12\" NumberOfCells=\"2\"", "Name=\"material\"", "Name=\"primal_vertex\"",
+        "type=\"Int8\" Name=\"class_dim\"", "Name=\"class_tag\"", "Name=\"valid\"",
+        "type=\"Float64\" Name=\"q\"", "Name=\"faceoffsets\"", "0.33333333333333331"})
+    EXPECT_NE(s.find(needle), std::string::npos) << needle;
+  EXPECT_THROW(write_vtu_poly(m, p.string(), {{"valid", std::vector<std::int32_t>{1}}}), UsageError);
+  EXPECT_THROW(write_vtu_poly(m, p.string(), {{"material", std::vector<std::int32_t>{1, 1}}}),
+               UsageError);
+}
+
+TEST(VtuPoly, DeterministicBytes) {
+  for (bool binary : {false, true}) {
+    const fs::path a = scratch("a.vtu"), b = scratch("b.vtu");
+    write_vtu_poly(block8(), a.string(), {}, VtuOptions{binary});
+    write_vtu_poly(block8(), b.string(), {}, VtuOptions{binary});
+    EXPECT_EQ(slurp(a), slurp(b));
+  }
+}
+
+TEST(VtuPoly, ReaderErrorsNameTheFile) {
+  const fs::path p = scratch("bad.vtu");
+  write_vtu_poly(unit_cube(), p.string());
+  std::string s = slurp(p);
+  const std::size_t types = s.find("Name=\"types\"");
+  ASSERT_NE(types, std::string::npos);
+  s.replace(s.find("42", types), 2, "12");  // a VTK_HEXAHEDRON, not a polyhedron
+  std::ofstream(p) << s;
+  try {
+    read_vtu_poly(p.string());
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.source(), p.string());
+    EXPECT_EQ(e.place(), "cell 0");
+  }
+  EXPECT_THROW(read_vtu_poly((p.parent_path() / "missing.vtu").string()), InputError);
+}
+
+// ---- OpenFOAM ------------------------------------------------------------------
+
+// The entries of an OpenFOAM list file (labels or "n(...)" faces), one per line.
+std::vector<std::string> foam_list(const fs::path& file) {
+  std::istringstream in(slurp(file));
+  std::string line;
+  while (std::getline(in, line) && line != "(") {}
+  std::vector<std::string> out;
+  while (std::getline(in, line) && line != ")") out.push_back(line);
+  return out;
+}
+std::vector<long> foam_labels(const fs::path& file) {
+  std::vector<long> out;
+  for (const std::string& s : foam_list(file)) out.push_back(std::stol(s));
+  return out;
+}
+
+TEST(Foam, TwoMaterialsFilesOrderingZones) {
+  const fs::path dir = scratch("twomat_case");
+  const FoamReport r = write_foam(two_materials(), dir.string());
+  const fs::path pm = dir / "constant" / "polyMesh";
+  for (const char* f : {"points", "faces", "owner", "neighbour", "boundary", "cellZones", "faceZones"})
+    EXPECT_TRUE(fs::exists(pm / f)) << f;
+  for (const char* f : {"controlDict", "fvSchemes", "fvSolution"})
+    EXPECT_TRUE(fs::exists(dir / "system" / f)) << f;
+  EXPECT_EQ(r.points, 12u);
+  EXPECT_EQ(r.cells, 2u);
+  EXPECT_EQ(r.faces, 11u);
+  EXPECT_EQ(r.internal_faces, 1u);
+  EXPECT_EQ(r.patches, 6u);
+  EXPECT_EQ(r.cell_zones, 2u);
+  EXPECT_EQ(r.face_zones, 1u);
+  EXPECT_EQ(foam_labels(pm / "neighbour"), std::vector<long>{1});
+  EXPECT_EQ(foam_labels(pm / "owner").size(), 11u);
+  EXPECT_NE(slurp(pm / "owner").find("note        \"nPoints:12  nCells:2  nFaces:11  nInternalFaces:1\""),
+            std::string::npos);
+  const std::string boundary = slurp(pm / "boundary");
+  std::size_t last = 0;
+  for (int tag = 1; tag <= 6; ++tag) {  // increasing tag order
+    const std::size_t at = boundary.find("face_" + std::to_string(tag) + "\n");
+    ASSERT_NE(at, std::string::npos);
+    EXPECT_GT(at, last);
+    last = at;
+  }
+  EXPECT_NE(boundary.find("face_3\n    {\n        type            patch;\n        nFaces          2;\n"
+                          "        startFace       3;"),
+            std::string::npos);  // -y: after the interface and the -x, +x faces
+  EXPECT_NE(slurp(pm / "cellZones").find("material_1\n{\n    type cellZone;\ncellLabels      List<label> 1(0);"),
+            std::string::npos);
+  EXPECT_NE(slurp(pm / "cellZones").find("material_2"), std::string::npos);
+  // The interface is oriented from material 1 to 2, which is owner -> neighbour here.
+  EXPECT_NE(slurp(pm / "faceZones").find("interface_7\n{\n    type faceZone;\nfaceLabels      List<label> 1(0);\n"
+                                         "flipMap         List<bool> 1(0);"),
+            std::string::npos);
+}
+
+TEST(Foam, Block8UpperTriangularAndPatches) {
+  PolyMesh m = block8();
+  // Flip some internal faces (owner > neighbour) to exercise reorientation.
+  for (std::size_t f = 0; f < m.num_faces(); f += 3) {
+    if (!m.face_neighbour[f].valid()) continue;
+    std::swap(m.face_owner[f], m.face_neighbour[f]);
+    std::reverse(m.face_points.begin() + m.face_offsets[f], m.face_points.begin() + m.face_offsets[f + 1]);
+    for (HalfFace& h : m.cell_faces)
+      if (h.face().idx == f) h = h.opposite();
+  }
+  const fs::path dir = scratch("block8_case");
+  const FoamReport r = write_foam(m, dir.string());
+  const fs::path pm = dir / "constant" / "polyMesh";
+  const auto owner = foam_labels(pm / "owner"), neighbour = foam_labels(pm / "neighbour");
+  ASSERT_EQ(r.internal_faces, 12u);
+  ASSERT_EQ(neighbour.size(), 12u);
+  ASSERT_EQ(owner.size(), 36u);
+  for (std::size_t i = 0; i < neighbour.size(); ++i) {
+    EXPECT_LT(owner[i], neighbour[i]);
+    if (i) EXPECT_LT(std::pair(owner[i - 1], neighbour[i - 1]), std::pair(owner[i], neighbour[i]));
+  }
+  // Every face's normal points out of its owner: the owner centre lies behind it.
+  const auto pts = foam_list(pm / "points");
+  const auto faces = foam_list(pm / "faces");
+  auto point = [&](long i) {
+    Point3 x;
+    std::sscanf(pts[static_cast<std::size_t>(i)].c_str(), "(%lf %lf %lf)", &x.x, &x.y, &x.z);
+    return x;
+  };
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    std::istringstream in(faces[f].substr(2, faces[f].size() - 3));
+    std::vector<Point3> q;
+    for (long i; in >> i;) q.push_back(point(i));
+    ASSERT_EQ(q.size(), 4u);
+    const Vec3 n = cross(q[1] - q[0], q[2] - q[0]);
+    const long c = owner[f];
+    const Point3 centre{0.1 * (c % 2) + 0.05, 0.1 * (c / 2 % 2) + 0.05 + 1.0 / 3.0, 0.1 * (c / 4) + 0.05};
+    EXPECT_GT(dot(n, q[0] - centre), 0) << "face " << f;
+  }
+  EXPECT_EQ(r.face_zones, 0u);
+  EXPECT_EQ(r.patches, 6u);
+}
+
+TEST(Foam, SlitFacesAndTheirPointsAreDropped) {
+  const fs::path dir = scratch("slit_case");
+  const FoamReport r = write_foam(cube_with_slit(), dir.string());
+  EXPECT_EQ(r.dropped_slit_faces, 1u);
+  EXPECT_EQ(r.dropped_points, 4u);
+  EXPECT_EQ(r.points, 8u);
+  EXPECT_EQ(r.faces, 6u);
+  EXPECT_NE(r.to_json().dump(0).find("\"dropped_slit_faces\":1"), std::string::npos)
+      << r.to_json().dump(0);
+  EXPECT_EQ(foam_list(dir / "constant" / "polyMesh" / "points").size(), 8u);
+}
+
+TEST(Foam, SpursAreCutOutOfFaces) {
+  const fs::path dir = scratch("spur_case");
+  const FoamReport r = write_foam(cube_with_spur(), dir.string());
+  EXPECT_EQ(r.faces_without_spurs, 1u);
+  EXPECT_EQ(r.dropped_points, 1u);
+  const auto faces = foam_list(dir / "constant" / "polyMesh" / "faces");
+  ASSERT_EQ(faces.size(), 6u);
+  for (const std::string& f : faces) EXPECT_EQ(f.substr(0, 2), "4(") << f;
+}
+
+TEST(Foam, FailureLeavesNothing) {
+  const fs::path base = scratch("atomic");
+  fs::create_directories(base);
+  std::ofstream(base / "file") << "x";
+  EXPECT_ANY_THROW(write_foam(unit_cube(), (base / "file" / "case").string()));
+  EXPECT_EQ(std::distance(fs::directory_iterator(base), fs::directory_iterator()), 1);
+
+  // A bad mesh must not replace an existing case, nor leave a temporary behind.
+  const fs::path dir = base / "case";
+  write_foam(unit_cube(), dir.string());
+  const std::string before = slurp(dir / "constant" / "polyMesh" / "faces");
+  PolyMesh bad = unit_cube();
+  bad.face_owner[2] = CellId::invalid();
+  EXPECT_THROW(write_foam(bad, dir.string()), InputError);
+  EXPECT_EQ(slurp(dir / "constant" / "polyMesh" / "faces"), before);
+  EXPECT_EQ(std::distance(fs::directory_iterator(base), fs::directory_iterator()), 2);
+}
+
+// OpenFOAM's own checker, when installed (Debian package openfoam). Not -allGeometry:
+// its cell-determinant check flags every cell with fewer than three internal
+// directions, i.e. every cell of a tiny hand-built mesh, whatever the writer does.
+std::string run_checkmesh(const fs::path& dir) {
+  const fs::path log = dir.string() + ".checkMesh.log";
+  const std::string cmd = "export WM_PROJECT_DIR=/usr/share/openfoam; /usr/bin/checkMesh -case '" +
+                          dir.string() + "' -allTopology > '" + log.string() + "' 2>&1";
+  const int rc = std::system(cmd.c_str());
+  return "rc=" + std::to_string(rc) + "\n" + slurp(log);
+}
+
+TEST(Foam, CheckMeshAcceptsHandBuiltMeshes) {
+  if (!fs::exists("/usr/bin/checkMesh") || !fs::exists("/usr/share/openfoam/etc/controlDict"))
+    GTEST_SKIP() << "OpenFOAM (/usr/bin/checkMesh) is not installed";
+  const std::map<std::string, PolyMesh> meshes{{"cube", unit_cube()}, {"twomat", two_materials()},
+                                               {"block8", block8()}, {"slit", cube_with_slit()},
+                                               {"spur", cube_with_spur()}};
+  for (const auto& [name, m] : meshes) {
+    const fs::path dir = scratch("check_" + name);
+    write_foam(m, dir.string());
+    const std::string out = run_checkmesh(dir);
+    EXPECT_NE(out.find("rc=0\n"), std::string::npos) << name << "\n" << out;
+    EXPECT_NE(out.find("Mesh OK."), std::string::npos) << name << "\n" << out;
+    EXPECT_EQ(out.find("***"), std::string::npos) << name << "\n" << out;
+  }
+}
+
+}  // namespace
+}  // namespace polydual
