@@ -253,30 +253,27 @@ std::vector<std::pair<PointId, PointId>> exact_coincidences(const ClassifiedTetM
     if (insphere(m.point(a[0]), m.point(a[1]), m.point(a[2]), m.point(a[3]), m.point(far)) == Sign::Zero)
       pairs.emplace_back(PointId(t0.idx), PointId(t1.idx));
   }
-  for (std::size_t e = 0; e < m.num_edges(); ++e) {
-    // the model-face triangles around an edge that is not a model edge: two, of one face
-    if (m.edge_class(EdgeId(e)).dim != 2) continue;
-    const auto& ev = m.edge(EdgeId(e));
-    TriId found[2];
-    int n = 0;
-    std::vector<TetId> ring;
-    std::vector<TriId> tris;
-    bool closed;
-    m.edge_ring(EdgeId(e), ring, tris, closed);
-    for (std::size_t k = 0; k < ring.size() + (closed ? 0 : 1); ++k)
-      if (m.on_model_face(tris[k]) && n < 2) found[n++] = tris[k];
-    if (n != 2 || !d.tri_well_centred[found[0].idx] || !d.tri_well_centred[found[1].idx]) continue;
-    const auto& t = m.triangle(found[0]);
-    VertexId far = VertexId::invalid();
-    for (VertexId x : m.triangle(found[1]))
-      if (x != ev[0] && x != ev[1]) far = x;
-    const Point3 &A = m.point(t[0]), &B = m.point(t[1]), &C = m.point(t[2]), &P = m.point(far);
-    if (orient3d(A, B, C, P) != Sign::Zero) continue;
-    const Point3 E = A + cross(B - A, C - A);  // off the plane (checked exactly below)
-    const Sign o = orient3d(A, B, C, E);
-    if (o == Sign::Zero) continue;
-    const Sign s = o == Sign::Positive ? insphere(A, B, C, E, P) : insphere(A, C, B, E, P);
-    if (s == Sign::Zero) pairs.emplace_back(d.tri_point[found[0].idx], d.tri_point[found[1].idx]);
+  // Pairs of model-face triangles sharing an edge that is not a model edge
+  // (such an edge has exactly two, of one model face).
+  std::vector<TriId> first(m.num_edges(), TriId::invalid());
+  for (std::size_t fi = 0; fi < m.num_triangles(); ++fi) {
+    const TriId f(fi);
+    if (!m.on_model_face(f) || !d.tri_well_centred[fi]) continue;
+    const auto& tv = m.triangle(f);
+    for (int k = 0; k < 3; ++k) {
+      const EdgeId e = m.triangle_edge(f, tv[k], tv[(k + 1) % 3]);
+      if (m.edge_class(e).dim != 2) continue;
+      if (!first[e.idx].valid()) { first[e.idx] = f; continue; }
+      const auto& t = m.triangle(first[e.idx]);
+      const Point3 &A = m.point(t[0]), &B = m.point(t[1]), &C = m.point(t[2]);
+      const Point3& P = m.point(tv[(k + 2) % 3]);
+      if (orient3d(A, B, C, P) != Sign::Zero) continue;
+      const Point3 E = A + cross(B - A, C - A);  // off the plane (checked exactly below)
+      const Sign o = orient3d(A, B, C, E);
+      if (o == Sign::Zero) continue;
+      const Sign s = o == Sign::Positive ? insphere(A, B, C, E, P) : insphere(A, C, B, E, P);
+      if (s == Sign::Zero) pairs.emplace_back(d.tri_point[first[e.idx].idx], d.tri_point[fi]);
+    }
   }
   (void)pm;
   return pairs;
@@ -318,6 +315,12 @@ Json DualStats::to_json() const {
   j.set("collapsed_points", collapsed_points);
   j.set("dropped_faces", dropped_faces);
   j.set("slit_faces", slit_faces);
+  Json sec = Json::object();
+  sec.set("points", seconds_points);
+  sec.set("faces", seconds_faces);
+  sec.set("cleanup", seconds_cleanup);
+  sec.set("cells", seconds_cells);
+  j.set("seconds", sec);
   return j;
 }
 

@@ -83,6 +83,27 @@ void circumcenter_barycentric_signs(const Point3& a, const Point3& b, const Poin
   static constexpr int perm[4][4] = {{1, 0, 3, 2}, {0, 1, 2, 3}, {0, 3, 1, 2}, {0, 2, 3, 1}};
   for (int i = 0; i < 4; ++i) {
     const auto& q = perm[i];
+    // Semi-static filter (proofs/star_filter.md, §circumcenter): the value in
+    // doubles and the same expression tree on absolute values, P; the rounding
+    // error of the degree-6 polynomial is below 64 eps P.
+    {
+      const Point3 &p0 = *p[q[0]], &p1 = *p[q[1]], &p2 = *p[q[2]], &p3 = *p[q[3]];
+      const Vec3 u = p1 - p0, v = p2 - p0, w = p3 - p0;
+      const Vec3 au{std::fabs(u.x), std::fabs(u.y), std::fabs(u.z)}, av{std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)},
+          aw{std::fabs(w.x), std::fabs(w.y), std::fabs(w.z)};
+      auto acr = [](const Vec3& a, const Vec3& b) {
+        return Vec3{a.y * b.z + a.z * b.y, a.z * b.x + a.x * b.z, a.x * b.y + a.y * b.x};
+      };
+      const Vec3 vw = cross(v, w), wu = cross(w, u), uv = cross(u, v);
+      const Vec3 avw = acr(av, aw), awu = acr(aw, au), auv = acr(au, av);
+      const double val = dot(u, u) * dot(vw, vw) + dot(v, v) * dot(wu, vw) + dot(w, w) * dot(uv, vw);
+      const double mag = dot(au, au) * dot(avw, avw) + dot(av, av) * dot(awu, avw) + dot(aw, aw) * dot(auv, avw);
+      const double bound = 64.0 * (DBL_EPSILON / 2) * mag;
+      if (std::isfinite(mag) && mag > 1e-200) {
+        if (val > bound) { out[i] = Sign::Positive; continue; }
+        if (val < -bound) { out[i] = Sign::Negative; continue; }
+      }
+    }
     out[i] = filtered_sign(
         [&](auto zero) {
           using NT = decltype(zero);

@@ -1,0 +1,6 @@
+#include "fuzz_common.h"
+#include "io/vtu_reader.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  return fuzz_one([&] { return polydual::read_vtu(as_text(data, size), "fuzz.vtu"); });
+}

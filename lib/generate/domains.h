@@ -1,0 +1,42 @@
+// The paper's demo domains (Garimella, Kim & Berndt 2013, section 4), meshed by
+// Gmsh (OpenCASCADE kernel, 3D Delaunay) so the tool runs without an input file.
+// Every mesh carries full classification: region tag per tet, model face tag per
+// boundary/interface/fracture triangle, model edge tag per curve segment, model
+// vertex tag per corner node.
+//
+// Determinism: the same (domain, target_tets) gives the same mesh, byte for byte,
+// on every run (Gmsh single-threaded, fixed random seed, no user config files).
+#pragma once
+#include <cstddef>
+#include <string>
+
+#include "mesh/tet_soup.h"
+
+namespace polydual {
+
+enum class Domain {
+  Cube,      // unit box [0,1]^3 (paper Fig. 7)
+  TwoMat,    // box [0,2]x[0,1]x[0,1] cut at x=1 into regions 1 (x<1) and 2 (x>1)
+  Fichera,   // [0,1]^3 minus the octant [0.5,1]^3: 3 re-entrant edges, 1 re-entrant corner
+  Fracture,  // unit box with an embedded zero-thickness rectangle at z=0.5,
+             // x in [0,0.6], y in [0.2,0.8] (touches the wall x=0, has 3 free edges)
+};
+
+// "cube" | "twomat" | "fichera" | "fracture"; throws UsageError listing these.
+Domain parse_domain(const std::string& name);
+std::string domain_name(Domain d);
+
+// Smallest and largest accepted target_tets (UsageError outside).
+inline constexpr std::size_t kMinTargetTets = 100;
+inline constexpr std::size_t kMaxTargetTets = 20'000'000;
+
+// Meshes domain d with about target_tets tetrahedra (within ~10-30%), all
+// positively oriented, full_classification = true. Throws UsageError on a bad
+// target and std::runtime_error when Gmsh fails.
+TetSoup generate_domain(Domain d, std::size_t target_tets);
+
+// The same mesh written by Gmsh's own msh 4.1 ASCII writer (all elements, with
+// $Entities), atomically: a temporary "<path>.tmp.<pid>.msh" renamed to path.
+void write_domain_msh(Domain d, std::size_t target_tets, const std::string& path);
+
+}  // namespace polydual

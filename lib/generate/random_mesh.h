@@ -1,0 +1,49 @@
+// Random and structured classified tet meshes for property tests and fuzzing
+// (SPEC §10: every invariant is checked on generated meshes). Deterministic and
+// portable: the same parameters give the same mesh on every platform.
+#pragma once
+#include <cstdint>
+
+#include "mesh/tet_soup.h"
+
+namespace polydual {
+
+struct RandomMeshParams {
+  // Seed of the point generator (std::mt19937_64, mapped to doubles by our own
+  // bit manipulation: std::uniform_real_distribution is implementation-defined).
+  std::uint64_t seed = 0;
+  // Random points strictly inside the unit box, added to its 8 corners.
+  int num_points = 60;
+  // 1: one region (tag 1). 2: tets with centroid x < 0.5 get tag 1, others 2 —
+  // a jagged material interface.
+  int regions = 1;
+  // Adds a zigzag internal surface with free edges (tag kRandomFractureTag, see
+  // random_classified_mesh).
+  bool fracture = false;
+  // Snap the random points to the grid of spacing 1/8 (duplicates merged): many
+  // coplanar and cospherical points, the degenerate inputs exact predicates
+  // must survive. Points may then also lie on the box's faces and edges.
+  bool lattice_points = false;
+};
+
+inline constexpr std::int32_t kRandomFractureTag = 100;
+
+// Delaunay tetrahedralisation (CGAL, exact predicates) of the unit box corners
+// plus the random points; all tets positively oriented, region tags as above.
+// With fracture: tagged triangles between two tets of one region whose centroids
+// lie on opposite sides of z = 0.5 and both have x < 0.6 — a zigzag sheet that
+// ends inside the mesh (fracture tips). Boundary and interface triangles are
+// not listed (classify() infers them); full_classification = false.
+// Throws UsageError on num_points < 0 or regions not in {1, 2}.
+TetSoup random_classified_mesh(const RandomMeshParams& params);
+
+// Box [0, nx·hx] x [0, ny·hy] x [0, nz·hz] of nx·ny·nz cells, each split into the
+// 6 Kuhn (Freudenthal) tets around the cell's diagonal from its min to its max
+// corner; the same diagonal direction in every cell makes the mesh conformal.
+// Every tet has volume hx·hy·hz/6 and is positively oriented. regions = 2 tags
+// cells with i < nx/2 as 1 and the rest as 2 (nx must be even).
+// Throws UsageError on non-positive sizes or spacings, or an odd nx with regions = 2.
+TetSoup kuhn_lattice(int nx, int ny, int nz, double hx = 1, double hy = 1, double hz = 1,
+                     int regions = 1);
+
+}  // namespace polydual

@@ -1,0 +1,166 @@
+#include "io/medit_io.h"
+
+#include <algorithm>
+#include <cctype>
+#include <iomanip>
+#include <limits>
+#include <ostream>
+
+#include "core/atomic_file.h"
+#include "io/file_bytes.h"
+#include "io/record_checks.h"
+#include "io/text_cursor.h"
+
+namespace polydual {
+namespace {
+
+std::string lower(std::string_view s) {
+  std::string r(s);
+  for (char& c : r) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return r;
+}
+
+// Keywords whose records are a fixed number of numbers and which carry nothing
+// we use (feature hints, normals, surface elements we do not model): skipped.
+int skipped_record_size(const std::string& kw) {
+  static const std::pair<const char*, int> kSkip[] = {
+      {"requiredvertices", 1}, {"ridges", 1},    {"requirededges", 1}, {"requiredtriangles", 1},
+      {"requiredtetrahedra", 1}, {"normals", 3}, {"tangents", 3},      {"normalatvertices", 2},
+      {"normalattrianglevertices", 3}, {"tangentatvertices", 2}, {"tangentatedges", 3},
+      {"quadrilaterals", 5}};
+  for (const auto& [name, n] : kSkip)
+    if (kw == name) return n;
+  return 0;
+}
+
+bool is_unsupported_volume(const std::string& kw) {
+  return kw == "hexahedra" || kw == "prisms" || kw == "pyramids" || kw == "tetrahedrap2";
+}
+
+struct Reader {
+  io::TextCursor cur;
+  TetSoup soup;
+
+  std::uint32_t vertex() {
+    const std::int64_t n = static_cast<std::int64_t>(soup.points.size());
+    if (n == 0) cur.fail("element refers to vertices but no Vertices were given before it");
+    return static_cast<std::uint32_t>(cur.integer_in("vertex index", 1, n) - 1);
+  }
+  std::int32_t ref() {
+    return static_cast<std::int32_t>(
+        cur.integer_in("reference", std::numeric_limits<std::int32_t>::min(), std::numeric_limits<std::int32_t>::max()));
+  }
+  std::int64_t count(const char* keyword, std::size_t min_bytes) {
+    const std::int64_t n = cur.integer_in("count", 0, std::numeric_limits<std::uint32_t>::max());
+    cur.check_count(n, min_bytes, keyword);
+    return n;
+  }
+
+  TetSoup read() {
+    bool have_dimension = false;
+    while (!cur.at_end()) {
+      const std::string_view word = cur.token("keyword");
+      const std::string kw = lower(word);
+      if (kw == "end") break;
+      if (kw == "meshversionformatted") {
+        cur.integer_in("version", 1, 4);
+      } else if (kw == "dimension") {
+        const std::int64_t d = cur.integer("dimension");
+        if (d != 3) cur.fail("Dimension " + std::to_string(d) + " not supported (only 3)");
+        have_dimension = true;
+      } else if (kw == "vertices") {
+        if (!soup.points.empty()) cur.fail("second Vertices section");
+        const std::int64_t n = count("Vertices", 8);
+        soup.points.reserve(n);
+        for (std::int64_t i = 0; i < n; ++i) {
+          Point3 p;
+          for (int k = 0; k < 3; ++k) p[k] = cur.real("coordinate");
+          cur.integer("vertex reference");
+          soup.points.push_back(p);
+        }
+      } else if (kw == "tetrahedra") {
+        const std::int64_t n = count("Tetrahedra", 10);
+        for (std::int64_t i = 0; i < n; ++i) {
+          std::array<std::uint32_t, 4> t{};
+          for (auto& v : t) v = vertex();
+          soup.tets.push_back(t);
+          soup.tet_region.push_back(ref());
+        }
+      } else if (kw == "triangles") {
+        const std::int64_t n = count("Triangles", 8);
+        for (std::int64_t i = 0; i < n; ++i) {
+          TaggedTriangle t;
+          for (auto& v : t.v) v = vertex();
+          if (const std::string bad = io::repeated_vertex(t.v, "triangle"); !bad.empty()) cur.fail(bad);
+          t.tag = ref();
+          soup.triangles.push_back(t);
+        }
+      } else if (kw == "edges") {
+        const std::int64_t n = count("Edges", 6);
+        for (std::int64_t i = 0; i < n; ++i) {
+          TaggedEdge e;
+          for (auto& v : e.v) v = vertex();
+          if (const std::string bad = io::repeated_vertex(e.v, "edge"); !bad.empty()) cur.fail(bad);
+          e.tag = ref();
+          soup.edges.push_back(e);
+        }
+      } else if (kw == "corners") {
+        const std::int64_t n = count("Corners", 2);
+        for (std::int64_t i = 0; i < n; ++i) {
+          const std::uint32_t v = vertex();
+          soup.corners.push_back({v, static_cast<std::int32_t>(v + 1)});
+        }
+      } else if (const int size = skipped_record_size(kw); size > 0) {
+        const std::int64_t n = count(std::string(word).c_str(), 2 * size);
+        for (std::int64_t i = 0; i < n * size; ++i) cur.real("value");
+      } else if (is_unsupported_volume(kw)) {
+        cur.fail("unsupported element kind " + std::string(word) + " (only linear tetrahedra)");
+      } else {
+        cur.fail("unknown keyword '" + io::quoted(word) + "'");
+      }
+    }
+    if (!have_dimension) throw InputError(cur.source(), "end of file", "missing 'Dimension 3'");
+    if (soup.points.empty()) throw InputError(cur.source(), "end of file", "missing Vertices section");
+    if (soup.tets.empty()) throw InputError(cur.source(), "end of file", "missing Tetrahedra section");
+    soup.source = cur.source();
+    return std::move(soup);
+  }
+};
+
+}  // namespace
+
+TetSoup read_medit(std::string_view bytes, const std::string& source) {
+  Reader r{io::TextCursor(bytes, source, '#'), {}};
+  return r.read();
+}
+
+TetSoup read_medit_file(const std::string& path) { return read_medit(io::read_file_bytes(path), path); }
+
+void write_medit(const TetSoup& soup, const std::string& path) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    out << std::setprecision(17);
+    out << "MeshVersionFormatted 2\nDimension 3\n\nVertices\n" << soup.points.size() << "\n";
+    for (const Point3& p : soup.points) out << p.x << ' ' << p.y << ' ' << p.z << " 0\n";
+    out << "\nTetrahedra\n" << soup.tets.size() << "\n";
+    for (std::size_t i = 0; i < soup.tets.size(); ++i) {
+      for (std::uint32_t v : soup.tets[i]) out << v + 1 << ' ';
+      out << (i < soup.tet_region.size() ? soup.tet_region[i] : 1) << "\n";
+    }
+    if (!soup.triangles.empty()) {
+      out << "\nTriangles\n" << soup.triangles.size() << "\n";
+      for (const TaggedTriangle& t : soup.triangles)
+        out << t.v[0] + 1 << ' ' << t.v[1] + 1 << ' ' << t.v[2] + 1 << ' ' << t.tag << "\n";
+    }
+    if (!soup.edges.empty()) {
+      out << "\nEdges\n" << soup.edges.size() << "\n";
+      for (const TaggedEdge& e : soup.edges) out << e.v[0] + 1 << ' ' << e.v[1] + 1 << ' ' << e.tag << "\n";
+    }
+    if (!soup.corners.empty()) {
+      out << "\nCorners\n" << soup.corners.size() << "\n";
+      for (const TaggedVertex& c : soup.corners) out << c.v + 1 << "\n";
+    }
+    out << "\nEnd\n";
+  });
+}
+
+}  // namespace polydual

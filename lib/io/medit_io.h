@@ -1,0 +1,18 @@
+// Medit .mesh (ASCII), the format CGAL Mesh_3 writes: Vertices "x y z ref",
+// Tetrahedra "a b c d ref" (ref -> region), Triangles "a b c ref" (ref -> model
+// face tag), Edges "a b ref", Corners "i" (tag = the vertex's 1-based index,
+// since Medit corners carry no tag of their own). Indices are 1-based.
+#pragma once
+#include <string>
+#include <string_view>
+
+#include "mesh/tet_soup.h"
+
+namespace polydual {
+
+TetSoup read_medit(std::string_view bytes, const std::string& source);
+TetSoup read_medit_file(const std::string& path);
+// Writes Vertices (ref 0), Tetrahedra, Triangles, Edges and Corners.
+void write_medit(const TetSoup& soup, const std::string& path);
+
+}  // namespace polydual

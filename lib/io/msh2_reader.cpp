@@ -1,0 +1,187 @@
+// Gmsh msh 2.2: $Nodes "id x y z", $Elements "id type ntags tags... nodes...".
+// Binary files keep the counts as text lines but the records as native ints and
+// doubles; binary $Elements come in blocks headed by (type, count, ntags).
+#include <cstdint>
+#include <limits>
+#include <unordered_map>
+#include <vector>
+
+#include "io/msh_internal.h"
+#include "io/record_checks.h"
+
+namespace polydual::io::msh {
+namespace {
+
+using NodeIndex = std::unordered_map<std::int64_t, std::uint32_t>;
+
+struct Reader {
+  TextCursor& cur;
+  bool binary;
+  TetSoup soup;
+  NodeIndex node_index;
+
+  [[noreturn]] void fail(const std::string& what) const { cur.fail(what); }
+
+  void nodes() {
+    const std::int64_t n = cur.integer_in("number of nodes", 0, std::numeric_limits<std::uint32_t>::max());
+    cur.check_count(n, binary ? 4 + 3 * 8 : 8, "node");
+    if (binary) cur.skip_end_of_line();
+    soup.points.reserve(n);
+    node_index.reserve(n);
+    for (std::int64_t i = 0; i < n; ++i) {
+      std::int64_t id;
+      Point3 p;
+      if (binary) {
+        id = cur.binary<std::int32_t>("the $Nodes block (expected a node id and 3 doubles)");
+        for (int k = 0; k < 3; ++k) p[k] = binary_coordinate(cur, "the $Nodes block (expected 3 doubles)");
+      } else {
+        id = cur.integer("node number");
+        for (int k = 0; k < 3; ++k) p[k] = cur.real("coordinate");
+      }
+      if (!node_index.emplace(id, static_cast<std::uint32_t>(soup.points.size())).second)
+        fail("node " + std::to_string(id) + " defined twice");
+      soup.points.push_back(p);
+    }
+    expect_end(cur, "Nodes");
+  }
+
+  std::uint32_t node(std::int64_t element, std::int64_t id) const {
+    auto it = node_index.find(id);
+    if (it == node_index.end())
+      fail("element " + std::to_string(element) + ": node " + std::to_string(id) + " is not defined in $Nodes");
+    return it->second;
+  }
+
+  // tags[0] is the physical tag, tags[1] the elementary one (Gmsh 2.2 manual).
+  static std::int32_t tag_of(const std::vector<std::int64_t>& tags) {
+    if (!tags.empty() && tags[0] != 0) return static_cast<std::int32_t>(tags[0]);
+    return tags.size() > 1 ? static_cast<std::int32_t>(tags[1]) : 0;
+  }
+
+  template <std::size_t N>
+  void check(const std::array<std::uint32_t, N>& v, std::int64_t id, const char* what) const {
+    const std::string bad = repeated_vertex(v, what);
+    if (!bad.empty()) fail("element " + std::to_string(id) + ": " + bad);
+  }
+
+  void add(Use use, std::int64_t id, const std::int64_t* nodes, std::int32_t tag) {
+    switch (use) {
+      case Use::tet:
+        soup.tets.push_back({node(id, nodes[0]), node(id, nodes[1]), node(id, nodes[2]), node(id, nodes[3])});
+        soup.tet_region.push_back(tag);
+        break;
+      case Use::triangle:
+        soup.triangles.push_back({{node(id, nodes[0]), node(id, nodes[1]), node(id, nodes[2])}, tag});
+        check(soup.triangles.back().v, id, "triangle");
+        break;
+      case Use::line:
+        soup.edges.push_back({{node(id, nodes[0]), node(id, nodes[1])}, tag});
+        check(soup.edges.back().v, id, "line");
+        break;
+      case Use::point: soup.corners.push_back({node(id, nodes[0]), tag}); break;
+      case Use::ignore: break;
+    }
+  }
+
+  std::int64_t tag_value(std::int64_t v) const {
+    if (v < std::numeric_limits<std::int32_t>::min() || v > std::numeric_limits<std::int32_t>::max())
+      fail("tag " + std::to_string(v) + " does not fit in 32 bits");
+    return v;
+  }
+
+  void elements_ascii(std::int64_t n) {
+    std::vector<std::int64_t> tags, nodes;
+    for (std::int64_t i = 0; i < n; ++i) {
+      const std::int64_t id = cur.integer("element number");
+      const std::int64_t type = cur.integer("element type");
+      const Use use = element_use(cur, type);
+      const std::int64_t ntags = cur.integer_in("number of tags", 0, 1000);
+      tags.clear();
+      for (std::int64_t k = 0; k < ntags; ++k) tags.push_back(tag_value(cur.integer("tag")));
+      nodes.clear();
+      for (int k = 0; k < node_count(type); ++k) nodes.push_back(cur.integer("node number"));
+      add(use, id, nodes.data(), tag_of(tags));
+    }
+  }
+
+  void elements_binary(std::int64_t n) {
+    cur.skip_end_of_line();
+    std::vector<std::int64_t> tags, nodes;
+    std::int64_t done = 0;
+    while (done < n) {
+      const char* what = "the $Elements block (expected an element header of 3 ints)";
+      const std::int64_t type = cur.binary<std::int32_t>(what);
+      const std::int64_t count = cur.binary<std::int32_t>(what);
+      const std::int64_t ntags = cur.binary<std::int32_t>(what);
+      const Use use = element_use(cur, type);
+      if (count <= 0 || count > n - done)
+        fail("element block of " + std::to_string(count) + " elements does not fit the " +
+             std::to_string(n - done) + " elements left");
+      if (ntags < 0 || ntags > 1000) fail("number of tags " + std::to_string(ntags) + " out of range (0..1000)");
+      const int nn = node_count(type);
+      cur.check_count(count, 4 * (1 + ntags + nn), "element");
+      for (std::int64_t e = 0; e < count; ++e) {
+        const char* rec = "the $Elements block (expected an element record)";
+        const std::int64_t id = cur.binary<std::int32_t>(rec);
+        tags.clear();
+        for (std::int64_t k = 0; k < ntags; ++k) tags.push_back(cur.binary<std::int32_t>(rec));
+        nodes.clear();
+        for (int k = 0; k < nn; ++k) nodes.push_back(cur.binary<std::int32_t>(rec));
+        add(use, id, nodes.data(), tag_of(tags));
+      }
+      done += count;
+    }
+  }
+
+  void elements() {
+    const std::int64_t n = cur.integer_in("number of elements", 0, std::numeric_limits<std::uint32_t>::max());
+    cur.check_count(n, binary ? 12 : 8, "element");
+    if (binary) elements_binary(n); else elements_ascii(n);
+    expect_end(cur, "Elements");
+  }
+
+  // $PhysicalNames is text even in binary files: "n" then "dim tag "name"".
+  // The names carry no classification, but parsing them catches corrupt files.
+  void physical_names() {
+    const std::int64_t n = cur.integer_in("number of physical names", 0, 1 << 30);
+    cur.check_count(n, 6, "physical name");
+    for (std::int64_t i = 0; i < n; ++i) {
+      cur.integer_in("physical dimension", 0, 3);
+      cur.integer("physical tag");
+      const std::string_view name = cur.rest_of_line();
+      if (name.find('"') == std::string_view::npos) cur.fail("expected a quoted physical name");
+    }
+    expect_end(cur, "PhysicalNames");
+  }
+};
+
+}  // namespace
+
+TetSoup read_msh2(TextCursor& cur, bool binary) {
+  Reader r{cur, binary, {}, {}};
+  bool have_nodes = false, have_elements = false;
+  while (!cur.at_end()) {
+    std::string_view name = cur.token("section name");
+    if (name.size() < 2 || name[0] != '$') cur.fail("expected a section such as $Nodes, got '" + quoted(name) + "'");
+    name.remove_prefix(1);
+    if (name == "Nodes") {
+      if (have_nodes) cur.fail("second $Nodes section");
+      r.nodes();
+      have_nodes = true;
+    } else if (name == "Elements") {
+      if (!have_nodes) cur.fail("$Elements before $Nodes");
+      if (have_elements) cur.fail("second $Elements section");
+      r.elements();
+      have_elements = true;
+    } else if (name == "PhysicalNames") {
+      r.physical_names();
+    } else {
+      skip_section(cur, name);
+    }
+  }
+  if (!have_nodes) throw InputError(cur.source(), "end of file", "missing $Nodes section");
+  if (!have_elements) throw InputError(cur.source(), "end of file", "missing $Elements section");
+  return std::move(r.soup);
+}
+
+}  // namespace polydual::io::msh

@@ -1,0 +1,103 @@
+#include "io/msh_reader.h"
+
+#include <cmath>
+
+#include "io/file_bytes.h"
+#include "io/msh_internal.h"
+
+namespace polydual {
+
+namespace io::msh {
+
+int node_count(std::int64_t type) {
+  // Gmsh element types 1..31 (GmshDefines.h); 92/93 are the cubic hexes.
+  static constexpr int kNodes[32] = {-1, 2, 3, 4, 4, 8, 6, 5, 3, 6, 9, 10, 27, 18, 14, 1,
+                                     8,  20, 15, 13, 9, 10, 12, 15, 15, 21, 4, 5, 6, 20, 35, 56};
+  if (type >= 1 && type <= 31) return kNodes[type];
+  if (type == 92) return 64;
+  if (type == 93) return 125;
+  return -1;
+}
+
+static int element_dim(std::int64_t type) {
+  static constexpr int kDim[32] = {-1, 1, 2, 2, 3, 3, 3, 3, 1, 2, 2, 3, 3, 3, 3, 0,
+                                   2,  3, 3, 3, 2, 2, 2, 2, 2, 2, 1, 1, 1, 3, 3, 3};
+  if (type >= 1 && type <= 31) return kDim[type];
+  return 3;  // 92, 93
+}
+
+Use element_use(const TextCursor& cur, std::int64_t type) {
+  auto fail = [&](const std::string& what) { cur.fail(what); };
+  if (node_count(type) < 0) fail("unknown element type " + std::to_string(type));
+  switch (type) {
+    case 4: return Use::tet;
+    case 2: return Use::triangle;
+    case 1: return Use::line;
+    case 15: return Use::point;
+    default: break;
+  }
+  if (element_dim(type) == 3) fail("unsupported element type " + std::to_string(type) + " (only linear tets)");
+  return Use::ignore;
+}
+
+void skip_section(TextCursor& cur, std::string_view name) {
+  // Searching the raw bytes works for binary sections as well as text ones.
+  const std::string end = "$End" + std::string(name);
+  const std::size_t at = cur.bytes().find(end, cur.offset());
+  if (at == std::string_view::npos) cur.fail("section $" + std::string(name) + " is not closed by " + end);
+  cur.seek(at + end.size());
+}
+
+void expect_end(TextCursor& cur, std::string_view name) {
+  const std::string end = "$End" + std::string(name);
+  const std::string_view t = cur.token(end.c_str());
+  if (t != end) cur.fail("expected " + end + ", got '" + quoted(t) + "' (count larger than the data?)");
+}
+
+double binary_coordinate(TextCursor& cur, const char* what) {
+  const std::size_t at = cur.offset();
+  const double v = cur.binary<double>(what);
+  if (!std::isfinite(v))
+    throw InputError(cur.source(), "byte " + std::to_string(at),
+                     "coordinate is not finite (" + std::to_string(v) + ")");
+  return v;
+}
+
+}  // namespace io::msh
+
+TetSoup read_msh(std::string_view bytes, const std::string& source) {
+  io::TextCursor cur(bytes, source);
+  const std::string_view first = cur.at_end() ? std::string_view() : cur.token("$MeshFormat");
+  if (first != "$MeshFormat")
+    cur.fail("not a Gmsh file: expected $MeshFormat, got '" + io::quoted(first) + "'");
+  const std::string_view version = cur.token("format version");
+  const std::int64_t file_type = cur.integer_in("file type", 0, 1);
+  const std::int64_t data_size = cur.integer("data size");
+  if (data_size != 8) cur.fail("data size " + std::to_string(data_size) + " not supported (only 8)");
+  int major = 0;
+  if (version == "2.2" || version == "2.1" || version == "2" || version == "2.0") {
+    major = 2;
+  } else if (version == "4.1") {
+    major = 4;
+  } else {
+    cur.fail("msh format version '" + io::quoted(version) + "' not supported (use 2.2 or 4.1)");
+  }
+  const bool binary = file_type == 1;
+  if (binary) {
+    // The binary int 1 tells the writer's endianness; we only read files
+    // written on a little-endian machine like ours.
+    cur.skip_end_of_line();
+    const int one = cur.binary<int>("the endianness check of $MeshFormat");
+    if (one != 1) cur.fail_byte("binary file of the other endianness (or corrupt $MeshFormat): got " +
+                                std::to_string(one) + " instead of 1");
+  }
+  io::msh::expect_end(cur, "MeshFormat");
+  cur.set_binary(binary);
+  TetSoup soup = major == 2 ? io::msh::read_msh2(cur, binary) : io::msh::read_msh4(cur, binary);
+  soup.source = source;
+  return soup;
+}
+
+TetSoup read_msh_file(const std::string& path) { return read_msh(io::read_file_bytes(path), path); }
+
+}  // namespace polydual

@@ -1,0 +1,15 @@
+// Reading any supported tet mesh by file extension: .msh (Gmsh 2.2/4.1),
+// .mesh (Medit), .node/.ele (TetGen, with .face when present), .vtu (VTK XML).
+#pragma once
+#include <string>
+
+#include "mesh/tet_soup.h"
+
+namespace polydual {
+
+// Throws InputError(path, "", "cannot open file") when the file cannot be
+// read, InputError naming the extension when it is not supported, and the
+// reader's InputError (with line or byte) when the content is bad.
+TetSoup read_tet_mesh(const std::string& path);
+
+}  // namespace polydual

@@ -1,0 +1,224 @@
+#include "optim/boundary.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace polydual {
+
+Point3 closest_point_on_segment(const Point3& x, const Point3& a, const Point3& b) {
+  const Vec3 ab = b - a;
+  const double l2 = norm2(ab);
+  if (!(l2 > 0)) return a;
+  const double t = std::clamp(dot(x - a, ab) / l2, 0.0, 1.0);
+  return a + t * ab;
+}
+
+Point3 closest_point_on_triangle(const Point3& p, const Point3& a, const Point3& b, const Point3& c) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+  if (d1 <= 0 && d2 <= 0) return a;
+  const Vec3 bp = p - b;
+  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
+  if (d3 >= 0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + (d1 / (d1 - d3)) * ab;
+  const Vec3 cp = p - c;
+  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
+  if (d6 >= 0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + (d2 / (d2 - d6)) * ac;
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
+    return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
+  const double denom = 1.0 / (va + vb + vc);
+  return a + (vb * denom) * ab + (vc * denom) * ac;
+}
+
+Point3 BoundaryConstraints::closest(std::uint32_t i, const Point3& x) const {
+  const Prim& q = prims_[i];
+  if (q.dim == 1) return closest_point_on_segment(x, verts_[q.v[0].idx], verts_[q.v[1].idx]);
+  return closest_point_on_triangle(x, verts_[q.v[0].idx], verts_[q.v[1].idx], verts_[q.v[2].idx]);
+}
+
+BoundaryConstraints::BoundaryConstraints(const ClassifiedTetMesh& primal, const PolyMesh& mesh)
+    : verts_(primal.points()), cls_(mesh.point_class) {
+  for (std::size_t f = 0; f < primal.num_triangles(); ++f) {
+    const ModelRef r = primal.triangle_class(TriId(f));
+    if (r.dim == 2) prims_.push_back({primal.triangle(TriId(f)), 2, r.tag});
+  }
+  for (std::size_t e = 0; e < primal.num_edges(); ++e) {
+    const ModelRef r = primal.edge_class(EdgeId(e));
+    if (r.dim == 1) {
+      const auto& ev = primal.edge(EdgeId(e));
+      prims_.push_back({{ev[0], ev[1], VertexId::invalid()}, 1, r.tag});
+    }
+  }
+  // Vertex -> primitives (CSR, primitives increasing per vertex: deterministic walks).
+  vprim_off_.assign(verts_.size() + 1, 0);
+  for (const Prim& q : prims_)
+    for (int k = 0; k < q.dim + 1; ++k) ++vprim_off_[q.v[k].idx + 1];
+  for (std::size_t v = 0; v < verts_.size(); ++v) vprim_off_[v + 1] += vprim_off_[v];
+  vprim_.resize(vprim_off_.back());
+  {
+    std::vector<std::uint32_t> fill(vprim_off_.begin(), vprim_off_.end() - 1);
+    for (std::uint32_t i = 0; i < prims_.size(); ++i)
+      for (int k = 0; k < prims_[i].dim + 1; ++k) vprim_[fill[prims_[i].v[k].idx]++] = i;
+  }
+  // Uniform grid: cell size ~ twice the mean primitive extent.
+  Point3 hi{-1e300, -1e300, -1e300};
+  lo_ = {1e300, 1e300, 1e300};
+  double ext = 0;
+  for (const Prim& q : prims_) {
+    Point3 a = verts_[q.v[0].idx], b = a;
+    for (int k = 1; k < q.dim + 1; ++k)
+      for (int d = 0; d < 3; ++d) {
+        a[d] = std::min(a[d], verts_[q.v[k].idx][d]);
+        b[d] = std::max(b[d], verts_[q.v[k].idx][d]);
+      }
+    for (int d = 0; d < 3; ++d) { lo_[d] = std::min(lo_[d], a[d]); hi[d] = std::max(hi[d], b[d]); }
+    ext += std::max({b.x - a.x, b.y - a.y, b.z - a.z});
+  }
+  if (!prims_.empty()) {
+    h_ = std::max(2.0 * ext / static_cast<double>(prims_.size()), 1e-300);
+    const double span = std::max({hi.x - lo_.x, hi.y - lo_.y, hi.z - lo_.z});
+    h_ = std::max(h_, span / 256.0);  // at most 256^3 cells
+    for (int d = 0; d < 3; ++d) n_[d] = std::max(1, static_cast<int>(std::ceil((hi[d] - lo_[d]) / h_)) + 1);
+  }
+  auto cell_of = [&](double v, int d) { return std::clamp(static_cast<int>(std::floor((v - lo_[d]) / h_)), 0, n_[d] - 1); };
+  const std::size_t ncell = static_cast<std::size_t>(n_[0]) * n_[1] * n_[2];
+  std::vector<std::array<int, 6>> box(prims_.size());
+  grid_off_.assign(ncell + 1, 0);
+  for (std::uint32_t pass = 0; pass < 2; ++pass) {
+    std::vector<std::uint32_t> fill;
+    if (pass == 1) {
+      for (std::size_t i = 0; i < ncell; ++i) grid_off_[i + 1] += grid_off_[i];
+      grid_.resize(grid_off_.back());
+      fill.assign(grid_off_.begin(), grid_off_.end() - 1);
+    }
+    for (std::uint32_t i = 0; i < prims_.size(); ++i) {
+      auto& bx = box[i];
+      if (pass == 0) {
+        const Prim& q = prims_[i];
+        for (int d = 0; d < 3; ++d) { bx[d] = n_[d]; bx[d + 3] = -1; }
+        for (int k = 0; k < q.dim + 1; ++k)
+          for (int d = 0; d < 3; ++d) {
+            const int c = cell_of(verts_[q.v[k].idx][d], d);
+            bx[d] = std::min(bx[d], c);
+            bx[d + 3] = std::max(bx[d + 3], c);
+          }
+      }
+      for (int x = bx[0]; x <= bx[3]; ++x)
+        for (int y = bx[1]; y <= bx[4]; ++y)
+          for (int z = bx[2]; z <= bx[5]; ++z) {
+            const std::size_t c = (static_cast<std::size_t>(x) * n_[1] + y) * n_[2] + z;
+            if (pass == 0) ++grid_off_[c + 1];
+            else grid_[fill[c]++] = i;
+          }
+    }
+  }
+  // Initial primitive of every boundary point.
+  const std::size_t np = mesh.num_points();
+  dof_.assign(np, 0);
+  current_.assign(np, kNone);
+  for (std::size_t p = 0; p < np; ++p) {
+    const ModelRef r = cls_[p];
+    if (r.dim == 3) dof_[p] = 3;
+    if (r.dim != 1 && r.dim != 2) continue;
+    const std::uint32_t q = nearest_by_grid(mesh.points[p], r.dim, r.tag);
+    if (q == kNone) continue;  // no primitive of this entity: keep the point fixed
+    current_[p] = q;
+    dof_[p] = static_cast<std::uint8_t>(r.dim);
+  }
+}
+
+std::uint32_t BoundaryConstraints::nearest_by_grid(const Point3& x, int dim, std::int32_t tag) const {
+  if (prims_.empty()) return kNone;
+  int c[3];
+  double outside = 0;  // distance from x to the grid box
+  for (int d = 0; d < 3; ++d) {
+    const double t = (x[d] - lo_[d]) / h_;
+    c[d] = std::clamp(static_cast<int>(std::floor(t)), 0, n_[d] - 1);
+    const double over = std::max(lo_[d] - x[d], x[d] - (lo_[d] + n_[d] * h_));
+    outside = std::max(outside, over);
+  }
+  std::uint32_t best = kNone;
+  double bestd = std::numeric_limits<double>::infinity();
+  const int rmax = std::max({n_[0], n_[1], n_[2]});
+  for (int r = 0; r <= rmax; ++r) {
+    for (int i = c[0] - r; i <= c[0] + r; ++i)
+      for (int j = c[1] - r; j <= c[1] + r; ++j)
+        for (int k = c[2] - r; k <= c[2] + r; ++k) {
+          if (std::max({std::abs(i - c[0]), std::abs(j - c[1]), std::abs(k - c[2])}) != r) continue;
+          if (i < 0 || j < 0 || k < 0 || i >= n_[0] || j >= n_[1] || k >= n_[2]) continue;
+          const std::size_t g = (static_cast<std::size_t>(i) * n_[1] + j) * n_[2] + k;
+          for (std::uint32_t a = grid_off_[g]; a < grid_off_[g + 1]; ++a) {
+            const std::uint32_t q = grid_[a];
+            if (prims_[q].dim != dim || prims_[q].tag != tag) continue;
+            const double d = norm(closest(q, x) - x);
+            if (d < bestd || (d == bestd && q < best)) { bestd = d; best = q; }
+          }
+        }
+    // Cells of ring r+1 are at least r*h_ away from x's cell (minus the offset outside).
+    if (best != kNone && bestd <= r * h_ - outside) break;
+  }
+  return best;
+}
+
+void BoundaryConstraints::tangent_basis(PointId p, Vec3 basis[3]) const {
+  const int k = dof_[p.idx];
+  if (k == 3) {
+    basis[0] = {1, 0, 0}; basis[1] = {0, 1, 0}; basis[2] = {0, 0, 1};
+    return;
+  }
+  if (k == 0) return;
+  const Prim& q = prims_[current_[p.idx]];
+  const Point3 &a = verts_[q.v[0].idx], &b = verts_[q.v[1].idx];
+  basis[0] = (b - a) / norm(b - a);
+  if (k == 2) {
+    const Vec3 n = cross(b - a, verts_[q.v[2].idx] - a);
+    const Vec3 t2 = cross(n, basis[0]);
+    basis[1] = t2 / norm(t2);
+  }
+}
+
+Point3 BoundaryConstraints::project(PointId p, const Point3& x, std::uint32_t* prim,
+                                    std::uint32_t start) const {
+  const int k = dof_[p.idx];
+  if (k != 1 && k != 2) {
+    if (prim) *prim = kNone;
+    return x;
+  }
+  std::uint32_t cur = start == kNone ? current_[p.idx] : start;
+  const Prim& me = prims_[cur];
+  Point3 y = closest(cur, x);
+  double dy = norm2(y - x);
+  for (int hop = 0; hop < 64; ++hop) {
+    std::uint32_t next = cur;
+    const Prim& pc = prims_[cur];
+    for (int v = 0; v < pc.dim + 1; ++v) {
+      const VertexId pv = pc.v[v];
+      for (std::uint32_t a = vprim_off_[pv.idx]; a < vprim_off_[pv.idx + 1]; ++a) {
+        const std::uint32_t q = vprim_[a];
+        if (q == cur || prims_[q].dim != me.dim || prims_[q].tag != me.tag) continue;
+        const Point3 z = closest(q, x);
+        const double dz = norm2(z - x);
+        if (dz < dy) { dy = dz; y = z; next = q; }
+      }
+    }
+    if (next == cur) break;
+    cur = next;
+  }
+  if (prim) *prim = cur;
+  return y;
+}
+
+double BoundaryConstraints::distance_to_entity(PointId p, const Point3& x) const {
+  const ModelRef r = cls_[p.idx];
+  double best = std::numeric_limits<double>::infinity();
+  for (std::uint32_t q = 0; q < prims_.size(); ++q)
+    if (prims_[q].dim == r.dim && prims_[q].tag == r.tag) best = std::min(best, norm(closest(q, x) - x));
+  return best;
+}
+
+}  // namespace polydual

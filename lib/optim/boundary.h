@@ -1,0 +1,78 @@
+// Boundary constraints of the optimisers (paper 3.3: "movement of mesh vertices
+// on the boundary was constrained to the original facetization by use of a
+// dynamically changing local parametric space"; SPEC §7).
+//
+// The facetisation is the primal mesh's triangles classified on model faces
+// (ModelRef{2,T}) and edges classified on model edges ({1,T}). A dual point
+// classified {2,T} lives on one triangle of model face T, its "current" triangle;
+// a point {1,T} on one segment of model edge T; {0,*} points are fixed.
+//
+// Local parametric space (concrete definition): the plane of the current
+// triangle with an orthonormal basis (t1, t2), origin at the point (or the line of
+// the current segment, basis t1). An optimiser moves the point to x = o + B u;
+// project() then walks from the current primitive to the nearest point of the
+// model entity: it examines the primitives of the same model entity that share a
+// primal vertex with the current one, moves to the one holding the nearest point,
+// and repeats until the current one is the nearest (at most 64 hops). The result
+// lies on a primitive, so it is on the original facetisation up to rounding, and
+// commit() makes that primitive current (re-centring the parametric space).
+#pragma once
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "mesh/classified_tet_mesh.h"
+#include "mesh/poly_mesh.h"
+
+namespace polydual {
+
+class BoundaryConstraints {
+ public:
+  static constexpr std::uint32_t kNone = UINT32_MAX;
+
+  // Finds each boundary point's nearest primitive of its model entity (uniform
+  // grid search). A point whose model entity has no primitive in `primal` is
+  // fixed (dof 0).
+  BoundaryConstraints(const ClassifiedTetMesh& primal, const PolyMesh& mesh);
+
+  // Degrees of freedom of point p: 0 fixed, 1 on a model edge, 2 on a model face,
+  // 3 interior (free).
+  int dof(PointId p) const { return dof_[p.idx]; }
+  std::uint32_t current(PointId p) const { return current_[p.idx]; }
+  // Orthonormal tangent basis of p's current primitive (dof(p) vectors).
+  void tangent_basis(PointId p, Vec3 basis[3]) const;
+  // Nearest point of p's model entity to x, walking from primitive `start`
+  // (kNone: p's current); writes the primitive reached. Interior points: x.
+  Point3 project(PointId p, const Point3& x, std::uint32_t* prim, std::uint32_t start = kNone) const;
+  void commit(PointId p, std::uint32_t prim) { if (dof_[p.idx] == 1 || dof_[p.idx] == 2) current_[p.idx] = prim; }
+  // Distance from x to p's model entity (exhaustive; for tests and checks).
+  double distance_to_entity(PointId p, const Point3& x) const;
+  std::size_t num_primitives() const { return prims_.size(); }
+
+ private:
+  struct Prim {
+    std::array<VertexId, 3> v;  // v[2] unused for segments
+    std::int8_t dim;            // 2 triangle, 1 segment
+    std::int32_t tag;
+  };
+  Point3 closest(std::uint32_t prim, const Point3& x) const;
+  std::uint32_t nearest_by_grid(const Point3& x, int dim, std::int32_t tag) const;
+
+  std::vector<Point3> verts_;
+  std::vector<Prim> prims_;
+  std::vector<std::uint32_t> vprim_off_, vprim_;  // primal vertex -> primitives
+  std::vector<ModelRef> cls_;                     // per dual point
+  std::vector<std::uint8_t> dof_;
+  std::vector<std::uint32_t> current_;
+  // Uniform grid over primitive bounding boxes (initial assignment only).
+  Point3 lo_;
+  double h_ = 1;
+  std::array<int, 3> n_{1, 1, 1};
+  std::vector<std::uint32_t> grid_off_, grid_;
+};
+
+// Closest point of triangle (a,b,c) to x (Ericson, Real-Time Collision Detection 5.1.5).
+Point3 closest_point_on_triangle(const Point3& x, const Point3& a, const Point3& b, const Point3& c);
+Point3 closest_point_on_segment(const Point3& x, const Point3& a, const Point3& b);
+
+}  // namespace polydual

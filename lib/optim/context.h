@@ -1,0 +1,37 @@
+// Shared state of one optimize() run (internal to lib/optim).
+#pragma once
+#include <chrono>
+#include <memory>
+#include <vector>
+
+#include "optim/boundary.h"
+#include "optim/optimize.h"
+#include "quality/stencil.h"
+
+namespace polydual::optim_detail {
+
+struct Context {
+  PolyMesh& mesh;
+  const OptimParams& params;
+  MeshStencil stencil;
+  std::vector<double> V0;                    // eq. 3 scale per cell, fixed for the run
+  std::unique_ptr<BoundaryConstraints> bc;   // null: boundary points fixed
+  std::vector<std::uint8_t> dof;             // per point: 0 fixed, 1 edge, 2 face, 3 free
+  std::vector<std::uint8_t> cell_valid;      // exact star test, kept current
+  std::chrono::steady_clock::time_point start;
+  OptimReport* report = nullptr;
+
+  Context(PolyMesh& m, const ClassifiedTetMesh* primal, const OptimParams& p);
+  double seconds() const;
+  // Total objective (parallel per cell, serial sum: deterministic).
+  double objective(std::span<const Point3> pts) const;
+  // Appends an IterationRecord for the mesh's current state.
+  void record(int iteration);
+  // Tangent basis of p (dof(p) orthonormal vectors).
+  void basis(PointId p, Vec3 B[3]) const;
+};
+
+void run_local(Context& ctx);
+void run_global(Context& ctx);
+
+}  // namespace polydual::optim_detail

@@ -1,0 +1,173 @@
+// The global scheme (SPEC §7): the same objective over all free point coordinates
+// at once, minimised by Ceres.
+//
+// Why ceres::GradientProblem + L-BFGS and not least squares on sqrt(kappa_mod):
+// the objective is a plain sum of corner terms whose curvature is dominated by
+// the terms themselves near tangled corners (kappa_mod grows like |V| S / V0^2
+// there), so a Gauss-Newton model of sqrt(kappa_mod) residuals is poor exactly
+// where untangling happens, and its Jacobian (dozens of points per corner through
+// F and R) is costly. L-BFGS needs only the gradient, which we have analytically
+// (reverse mode through F and R, objective.cpp).
+//
+// Constraints. Boundary points are parametrised in their local tangent frames
+// (x = o + B t, t in R^k, k = 1 or 2); rather than a ceres::Manifold per point
+// (whose Plus would have to walk the facetisation inside the line search, with
+// no way to re-centre frames), we solve in rounds: each round runs L-BFGS for a
+// fixed number of iterations from t = 0, then projects boundary points onto the
+// facetisation (walking, boundary.h) and re-centres their frames. Validity: a
+// round's move is damped by halving (x = project(o + alpha B t)) until no cell
+// that was valid before the round is invalid (exact test) and the objective did
+// not increase; if no alpha works the run stops. So, like the local scheme, the
+// global scheme never turns a valid cell invalid.
+#include <ceres/gradient_problem.h>
+#include <ceres/gradient_problem_solver.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+
+#include "optim/context.h"
+#include "optim/objective.h"
+#include "quality/star_test.h"
+
+namespace polydual::optim_detail {
+namespace {
+
+struct Frames {
+  std::vector<PointId> free;        // points with dof > 0, increasing
+  std::vector<std::uint32_t> off;   // parameter offset of free[i]; off.back() = total
+  std::vector<Point3> origin;
+  std::vector<std::array<Vec3, 3>> basis;
+};
+
+class GlobalObjective final : public ceres::FirstOrderFunction {
+ public:
+  GlobalObjective(const Context& ctx, const Frames& fr) : ctx_(ctx), fr_(fr), pts_(ctx.mesh.points) {
+    const MeshStencil& s = ctx.stencil;
+    cell_grad_.resize(s.cell_pts.size());
+    energy_.resize(s.num_cells());
+    // For each point the slots of cell_grad_ holding its per-cell gradients.
+    slot_off_.assign(ctx.mesh.num_points() + 1, 0);
+    for (PointId p : s.cell_pts) ++slot_off_[p.idx + 1];
+    for (std::size_t p = 0; p + 1 < slot_off_.size(); ++p) slot_off_[p + 1] += slot_off_[p];
+    slots_.resize(s.cell_pts.size());
+    std::vector<std::uint32_t> fill(slot_off_.begin(), slot_off_.end() - 1);
+    for (std::uint32_t i = 0; i < s.cell_pts.size(); ++i) slots_[fill[s.cell_pts[i].idx]++] = i;
+  }
+  int NumParameters() const override { return static_cast<int>(fr_.off.back()); }
+  bool Evaluate(const double* t, double* cost, double* gradient) const override {
+    for (std::size_t i = 0; i < fr_.free.size(); ++i) {
+      Point3 x = fr_.origin[i];
+      for (std::uint32_t j = fr_.off[i]; j < fr_.off[i + 1]; ++j) x += t[j] * fr_.basis[i][j - fr_.off[i]];
+      pts_[fr_.free[i].idx] = x;
+    }
+    const MeshStencil& s = ctx_.stencil;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, s.num_cells(), 128), [&](const auto& r) {
+      for (std::size_t c = r.begin(); c != r.end(); ++c)
+        energy_[c] = cell_energy_gradient(s, static_cast<std::uint32_t>(c), ctx_.params.metric, pts_,
+                                          ctx_.V0[c], ctx_.params.c,
+                                          gradient ? cell_grad_.data() + s.cell_pt_off[c] : nullptr);
+    });
+    double sum = 0;  // serial: deterministic
+    for (double e : energy_) sum += e;
+    *cost = sum;
+    if (gradient) {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, fr_.free.size(), 512), [&](const auto& r) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+          const PointId p = fr_.free[i];
+          Vec3 g{};
+          for (std::uint32_t a = slot_off_[p.idx]; a < slot_off_[p.idx + 1]; ++a) g += cell_grad_[slots_[a]];
+          for (std::uint32_t j = fr_.off[i]; j < fr_.off[i + 1]; ++j)
+            gradient[j] = dot(g, fr_.basis[i][j - fr_.off[i]]);
+        }
+      });
+    }
+    return std::isfinite(sum);
+  }
+
+ private:
+  const Context& ctx_;
+  const Frames& fr_;
+  mutable std::vector<Point3> pts_;
+  mutable std::vector<Vec3> cell_grad_;
+  mutable std::vector<double> energy_;
+  std::vector<std::uint32_t> slot_off_, slots_;
+};
+
+}  // namespace
+
+void run_global(Context& ctx) {
+  const auto& prm = ctx.params;
+  Frames fr;
+  fr.off.push_back(0);
+  for (std::size_t i = 0; i < ctx.mesh.num_points(); ++i)
+    if (ctx.dof[i] > 0) {
+      fr.free.push_back(PointId(i));
+      fr.off.push_back(fr.off.back() + ctx.dof[i]);
+    }
+  if (fr.free.empty()) return;
+  fr.origin.resize(fr.free.size());
+  fr.basis.resize(fr.free.size());
+  const std::size_t nc = ctx.mesh.num_cells();
+  std::vector<Point3> before;
+  std::vector<std::uint32_t> prim(fr.free.size());
+  std::vector<std::uint8_t> valid_now(nc);
+  double f_prev = ctx.report->iterations.back().objective;
+  for (int round = 1; round <= prm.max_iter; ++round) {
+    for (std::size_t i = 0; i < fr.free.size(); ++i) {
+      fr.origin[i] = ctx.mesh.points[fr.free[i].idx];
+      ctx.basis(fr.free[i], fr.basis[i].data());
+    }
+    std::vector<double> t(fr.off.back(), 0.0);
+    {
+      ceres::GradientProblem problem(new GlobalObjective(ctx, fr));  // takes ownership
+      ceres::GradientProblemSolver::Options opt;
+      opt.line_search_direction_type = ceres::LBFGS;
+      opt.max_num_iterations = prm.global_iterations_per_round;
+      opt.logging_type = ceres::SILENT;
+      opt.minimizer_progress_to_stdout = false;
+      opt.function_tolerance = 1e-12;
+      opt.parameter_tolerance = 1e-12;
+      ceres::GradientProblemSolver::Summary sum;
+      ceres::Solve(opt, problem, t.data(), &sum);
+    }
+    // Damped, projected acceptance of the round's move.
+    before = ctx.mesh.points;
+    bool accepted = false;
+    double alpha = 1.0;
+    for (int hv = 0; hv <= prm.max_halvings && !accepted; ++hv, alpha *= 0.5) {
+      for (std::size_t i = 0; i < fr.free.size(); ++i) {
+        const PointId p = fr.free[i];
+        Point3 x = fr.origin[i];
+        for (std::uint32_t j = fr.off[i]; j < fr.off[i + 1]; ++j) x += (alpha * t[j]) * fr.basis[i][j - fr.off[i]];
+        if (ctx.dof[p.idx] < 3) x = ctx.bc->project(p, x, &prim[i]);
+        ctx.mesh.points[p.idx] = x;
+      }
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nc, 256), [&](const auto& r) {
+        std::vector<Point3> scratch;
+        for (std::size_t c = r.begin(); c != r.end(); ++c)
+          valid_now[c] = star_shaped_verdict(ctx.stencil, static_cast<std::uint32_t>(c), ctx.mesh.points,
+                                             true, scratch).valid;
+      });
+      bool ok = true;
+      for (std::size_t c = 0; c < nc && ok; ++c) ok = !ctx.cell_valid[c] || valid_now[c];
+      accepted = ok && ctx.objective(ctx.mesh.points) <= f_prev;
+    }
+    if (!accepted) {
+      ctx.mesh.points = before;
+      break;
+    }
+    for (std::size_t i = 0; i < fr.free.size(); ++i) {
+      const PointId p = fr.free[i];
+      if (ctx.dof[p.idx] < 3) ctx.bc->commit(p, prim[i]);
+      if (!(ctx.mesh.points[p.idx] == before[p.idx])) ++ctx.report->vertex_updates;
+    }
+    ctx.cell_valid = valid_now;
+    ctx.record(round);
+    const double f = ctx.report->iterations.back().objective;
+    if (std::fabs(f_prev - f) < prm.tol * std::fabs(f_prev)) break;
+    f_prev = f;
+  }
+}
+
+}  // namespace polydual::optim_detail

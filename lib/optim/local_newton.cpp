@@ -1,0 +1,235 @@
+// The paper's local scheme (3.3): Gauss-Seidel sweeps; at each free point, Newton
+// on grad f = 0 for the local objective, in the point's local parametric space
+// (R^3 inside, the tangent plane/line of its current primitive on the boundary).
+#include <ceres/jet.h>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+
+#include "optim/context.h"
+#include "optim/objective.h"
+#include "quality/star_test.h"
+
+namespace polydual::optim_detail {
+namespace {
+
+// Fixed 3x3 systems; a point with k < 3 dof pads the unused rows with the
+// identity and a zero gradient, so its step has zeros there.
+using Mat = Eigen::Matrix3d;
+using Vec = Eigen::Vector3d;
+using Jet3 = ceres::Jet<double, 3>;
+
+class VertexNewton {
+ public:
+  explicit VertexNewton(Context& ctx) : ctx_(ctx) {}
+
+  // Up to params.newton_steps Newton steps at p; returns the number accepted and
+  // the total displacement in *moved.
+  int optimise(PointId p, double* moved) {
+    const auto& prm = ctx_.params;
+    Point3* pts = ctx_.mesh.points.data();
+    const LocalObjective obj{ctx_.stencil, pts, ctx_.V0.data(), prm.metric, prm.c, p};
+    const int k = ctx_.dof[p.idx];
+    const auto cells = ctx_.stencil.cells_of(p);
+    double v0 = 0;
+    for (std::uint32_t c : cells) v0 += ctx_.V0[c];
+    const double ell = std::cbrt(v0 / static_cast<double>(cells.size()));  // local length
+    const double h = prm.fd_step * ell;
+    int accepted = 0;
+    *moved = 0;
+    for (int step = 0; step < prm.newton_steps; ++step) {
+      const Point3 o = pts[p.idx];
+      Vec3 B[3];
+      ctx_.basis(p, B);
+      // f in the local parametric space: x(t) = o + B t (t in R^k).
+      auto x_of = [&](const double* t) {
+        Point3 x = o;
+        for (int i = 0; i < k; ++i) x += t[i] * B[i];
+        return x;
+      };
+      auto f = [&](const double* t) {
+        const Point3 x = x_of(t);
+        const double xa[3] = {x.x, x.y, x.z};
+        return obj(xa);
+      };
+      const double zero[3] = {0, 0, 0};
+      const double f0 = f(zero);
+      Vec g = Vec::Zero();
+      Mat H = Mat::Identity();
+      if (prm.derivatives == OptimParams::Derivatives::FiniteDifference)
+        fd_derivatives(f, k, h, f0, g, H);
+      else
+        exact_derivatives(obj, o, B, k, h, g, H);
+      if (!g.allFinite() || !H.allFinite()) break;
+      if (g.norm() * ell <= 1e-12 * std::fabs(f0)) break;  // stationary
+      Vec d = positive_definite_solve_k(H, g, k);
+      // Cap the step at the local length: Newton on a tangled configuration can
+      // propose jumps far outside the local model's validity.
+      const double dn = d.norm();
+      if (dn > ell) d *= ell / dn;
+      const double slope = g.dot(d);
+      if (!(slope < 0)) break;
+      if (-slope <= 1e-14 * std::fabs(f0)) break;  // Newton decrement ~ 0: converged
+      // Damping (paper 3.3 / [9]): halve until Armijo holds AND every incident
+      // cell that was valid is still valid (exact star test).
+      double alpha = 1.0;
+      bool ok = false;
+      std::uint32_t prim = BoundaryConstraints::kNone;
+      Point3 xt = o;
+      for (int hv = 0; hv <= prm.max_halvings && !ok; ++hv, alpha *= 0.5) {
+        double t[3] = {0, 0, 0};
+        for (int i = 0; i < k; ++i) t[i] = alpha * d[i];
+        xt = x_of(t);
+        if (k < 3) xt = ctx_.bc->project(p, xt, &prim);
+        const double xa[3] = {xt.x, xt.y, xt.z};
+        const double ft = obj(xa);
+        if (!(ft <= f0 + 1e-4 * alpha * slope)) continue;
+        pts[p.idx] = xt;
+        ok = keeps_valid(cells);
+        if (!ok) pts[p.idx] = o;
+      }
+      if (!ok) break;
+      if (k < 3) ctx_.bc->commit(p, prim);  // re-centre the parametric space
+      for (std::uint32_t c : cells)
+        if (!ctx_.cell_valid[c])
+          ctx_.cell_valid[c] = star_shaped_verdict(ctx_.stencil, c, ctx_.mesh.points, true, scratch_).valid;
+      ++accepted;
+      const double disp = norm(xt - o);
+      *moved += disp;
+      if (disp <= 1e-10 * ell) break;
+    }
+    return accepted;
+  }
+
+ private:
+  bool keeps_valid(std::span<const std::uint32_t> cells) {
+    for (std::uint32_t c : cells)
+      if (ctx_.cell_valid[c] &&
+          !star_shaped_verdict(ctx_.stencil, c, ctx_.mesh.points, true, scratch_).valid)
+        return false;
+    return true;
+  }
+
+  // Central differences (the paper): g_i = (f+i - f-i)/2h, H_ii = (f+i - 2f0 + f-i)/h^2,
+  // H_ij = (f(+i+j) - f+i - f+j + 2f0 - f-i - f-j + f(-i-j)) / 2h^2: 1 + 2k + k(k-1) evaluations.
+  template <class F>
+  static void fd_derivatives(F& f, int k, double h, double f0, Vec& g, Mat& H) {
+    double fp[3], fm[3];
+    for (int i = 0; i < k; ++i) {
+      double t[3] = {0, 0, 0};
+      t[i] = h; fp[i] = f(t);
+      t[i] = -h; fm[i] = f(t);
+      g[i] = (fp[i] - fm[i]) / (2 * h);
+      H(i, i) = (fp[i] - 2 * f0 + fm[i]) / (h * h);
+    }
+    for (int i = 0; i < k; ++i)
+      for (int j = i + 1; j < k; ++j) {
+        double t[3] = {0, 0, 0};
+        t[i] = h; t[j] = h;
+        const double fpp = f(t);
+        t[i] = -h; t[j] = -h;
+        const double fmm = f(t);
+        H(i, j) = H(j, i) = (fpp - fp[i] - fp[j] + 2 * f0 - fm[i] - fm[j] + fmm) / (2 * h * h);
+      }
+  }
+
+  // Exact gradient by ceres::Jet; Hessian by central differences of the exact
+  // gradient (symmetrised). Nested Jets would give an exact Hessian but Ceres'
+  // Jet does not mix with double constants at the inner level.
+  static void exact_gradient(const LocalObjective& obj, const Point3& o, const Vec3* B, int k,
+                             const double* t, double* g, double* value) {
+    Jet3 x[3];
+    for (int d = 0; d < 3; ++d) x[d] = Jet3(o[d]);
+    for (int i = 0; i < k; ++i) {
+      const Jet3 ti(t[i], i);
+      for (int d = 0; d < 3; ++d) x[d] += ti * B[i][d];
+    }
+    const Jet3 fx = obj(x);
+    for (int i = 0; i < k; ++i) g[i] = fx.v[i];
+    if (value) *value = fx.a;
+  }
+  static void exact_derivatives(const LocalObjective& obj, const Point3& o, const Vec3* B, int k,
+                                double h, Vec& g, Mat& H) {
+    double t[3] = {0, 0, 0}, gp[3], gm[3], g0[3];
+    exact_gradient(obj, o, B, k, t, g0, nullptr);
+    for (int i = 0; i < k; ++i) g[i] = g0[i];
+    for (int i = 0; i < k; ++i) {
+      t[i] = h; exact_gradient(obj, o, B, k, t, gp, nullptr);
+      t[i] = -h; exact_gradient(obj, o, B, k, t, gm, nullptr);
+      t[i] = 0;
+      for (int j = 0; j < k; ++j) H(j, i) = (gp[j] - gm[j]) / (2 * h);
+    }
+    const Mat Ht = H.transpose();
+    H = 0.5 * (H + Ht);
+  }
+
+  // Solve (H + tau I) d = -g, doubling tau from a small multiple of the
+  // diagonal's scale until Cholesky succeeds (paper 3.3, [9] Nocedal-Wright 3.4).
+  static Vec positive_definite_solve_k(const Mat& H, const Vec& g, int k) {
+    double scale = 0;
+    for (int i = 0; i < k; ++i) scale = std::max(scale, std::fabs(H(i, i)));
+    if (!(scale > 0)) scale = 1;
+    double tau = 0;
+    for (int it = 0; it < 80; ++it) {
+      Mat M = H;
+      for (int i = 0; i < k; ++i) M(i, i) += tau;
+      const Eigen::LLT<Mat> llt(M);
+      if (llt.info() == Eigen::Success) {
+        // LLT succeeds on some indefinite matrices with tiny pivots: also require
+        // positive pivots relative to the scale.
+        const Mat Lm = llt.matrixL();
+        bool good = true;
+        for (int i = 0; i < k; ++i) good = good && Lm(i, i) > 1e-8 * std::sqrt(scale);
+        if (good) return llt.solve(-g);
+      }
+      tau = tau == 0 ? 1e-3 * scale : 2 * tau;
+    }
+    return -g / scale;  // steepest descent as a last resort
+  }
+
+  Context& ctx_;
+  std::vector<Point3> scratch_;
+};
+
+}  // namespace
+
+void run_local(Context& ctx) {
+  const auto& prm = ctx.params;
+  const std::size_t np = ctx.mesh.num_points(), nc = ctx.mesh.num_cells();
+  VertexNewton solver(ctx);
+  // Active set: a point is revisited while a cell around it is invalid or changed
+  // in this or the previous sweep (points in settled regions are skipped).
+  std::vector<int> last_change(nc, 0);
+  double f_prev = ctx.report->iterations.back().objective;
+  for (int sweep = 1; sweep <= prm.max_iter; ++sweep) {
+    // Surface pass (model edges and faces), then volume pass (paper 3.3).
+    for (int pass = 0; pass < 2; ++pass) {
+      for (std::size_t i = 0; i < np; ++i) {
+        const PointId p(i);
+        const int k = ctx.dof[i];
+        if (k == 0 || (pass == 0) != (k < 3)) continue;
+        bool active = false;
+        for (std::uint32_t c : ctx.stencil.cells_of(p))
+          active = active || !ctx.cell_valid[c] || last_change[c] >= sweep - 1;
+        if (!active) continue;
+        double moved = 0;
+        const int n = solver.optimise(p, &moved);
+        ctx.report->vertex_updates += static_cast<std::uint64_t>(n);
+        if (n == 0) continue;
+        double v0 = 0;
+        for (std::uint32_t c : ctx.stencil.cells_of(p)) v0 += ctx.V0[c];
+        const double ell = std::cbrt(v0 / static_cast<double>(ctx.stencil.cells_of(p).size()));
+        if (moved > 1e-7 * ell)
+          for (std::uint32_t c : ctx.stencil.cells_of(p)) last_change[c] = sweep;
+      }
+    }
+    ctx.record(sweep);
+    const double f = ctx.report->iterations.back().objective;
+    if (std::fabs(f_prev - f) < prm.tol * std::fabs(f_prev)) break;
+    f_prev = f;
+  }
+}
+
+}  // namespace polydual::optim_detail

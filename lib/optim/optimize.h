@@ -1,0 +1,80 @@
+// Untangling and smoothing of a polyhedral mesh (paper 3.3, SPEC §7): minimise
+// the sum of kappa_mod over all corners of the chosen metric, with the paper's
+// local Gauss-Seidel Newton scheme or a global Ceres L-BFGS solve, keeping boundary
+// points on the original facetisation and never turning a valid cell invalid.
+#pragma once
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+#include "core/json.h"
+#include "mesh/classified_tet_mesh.h"
+#include "mesh/poly_mesh.h"
+#include "quality/corner.h"
+#include "quality/metrics.h"
+
+namespace polydual {
+
+struct OptimParams {
+  enum class Method : std::uint8_t { None, Local, Global };
+  enum class Derivatives : std::uint8_t { FiniteDifference, Exact };
+
+  // Optimiser. Default Local (the paper's scheme).
+  Method method = Method::Local;
+  // Corner set of the objective and of the reported quality. Default Q1 (the
+  // paper found it untangles faster).
+  Metric metric = Metric::Q1;
+  // Local scheme: FiniteDifference (the paper; central differences of the
+  // objective) or Exact (gradient by ceres::Jet; Hessian by central differences
+  // of that exact gradient). Ignored by Global (analytic adjoint gradient).
+  Derivatives derivatives = Derivatives::FiniteDifference;
+  // Local: number of Gauss-Seidel iterations (each = a surface pass then a
+  // volume pass). Global: number of rounds (L-BFGS solve, projection, validity
+  // check). Default 20.
+  int max_iter = 20;
+  // Stop when |f_prev - f| < tol * |f_prev| after an iteration. Default 1e-4.
+  double tol = 1e-4;
+  // c of eq. 3, delta = V0 / (1 + c exp(V/V0)). Default 50 (paper: 10..100).
+  double c = kDefaultDeltaC;
+  // Local: Newton steps per vertex visit. Default 1 (more sweeps do the rest).
+  int newton_steps = 1;
+  // Local and Global: step halvings tried before a move is rejected. Default 20.
+  int max_halvings = 20;
+  // Finite-difference step, relative to the local length cbrt(V0). Default 1e-4
+  // (~eps^(1/4): balances truncation and rounding in second differences).
+  double fd_step = 1e-4;
+  // Global: L-BFGS iterations per round. Default 50.
+  int global_iterations_per_round = 50;
+};
+
+struct IterationRecord {
+  int iteration = 0;           // 0 = initial state
+  double objective = 0;        // sum of kappa_mod over all corners
+  std::size_t invalid = 0;     // invalid cells, exact star test
+  double min_quality = 0;      // over untangled cells, kappa/3
+  double mean_quality = 0;
+  double seconds = 0;          // wall time since the start of optimize()
+  Json to_json() const;
+};
+
+struct OptimReport {
+  std::vector<IterationRecord> iterations;
+  int invalid_before = 0, invalid_after = 0;
+  QualityStats before, after;
+  double seconds = 0;
+  std::uint64_t vertex_updates = 0;  // accepted point moves (Local) / moved points x rounds (Global)
+  Json to_json() const;
+};
+
+// Optimises `mesh` in place. With primal == nullptr boundary points (dim 0..2) are
+// fixed; otherwise dim-1/2 points slide on the primal's model edges/faces.
+OptimReport optimize(PolyMesh& mesh, const ClassifiedTetMesh* primal, const OptimParams& params);
+
+// CLI parsers; throw UsageError on an unknown value.
+OptimParams::Method parse_method(std::string_view s);             // none|local|global
+Metric parse_metric(std::string_view s);                          // q1|q2
+OptimParams::Derivatives parse_derivatives(std::string_view s);   // fd|exact
+const char* method_name(OptimParams::Method m);
+const char* derivatives_name(OptimParams::Derivatives d);
+
+}  // namespace polydual

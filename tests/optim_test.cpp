@@ -1,0 +1,350 @@
+// Tests of lib/optim: untangling, validity preservation, local vs global, exact
+// vs finite-difference derivatives, boundary constraints, determinism.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <random>
+#include <set>
+
+#include "core/error.h"
+#include "mesh/classified_tet_mesh.h"
+#include "mesh/poly_mesh.h"
+#include "optim/boundary.h"
+#include "optim/objective.h"
+#include "optim/optimize.h"
+#include "quality/star_test.h"
+#include "quality/stencil.h"
+
+namespace polydual {
+namespace {
+
+// A block of n^3 axis-aligned hex cells of size h as a PolyMesh (test helper).
+// Interior points are free (dim 3). Boundary points are fixed (dim 0) unless
+// classify_boundary: then box-face points are {2, face tag 1..6}, box-edge points
+// {1, edge tag 11..}, box corners {0, corner tag}.
+PolyMesh hex_block(int n, double h = 1.0, bool classify_boundary = false) {
+  PolyMesh m;
+  const int N = n + 1;
+  auto pid = [&](int i, int j, int k) { return PointId((i * N + j) * N + k); };
+  auto cid = [&](int i, int j, int k) { return CellId((i * n + j) * n + k); };
+  for (int i = 0; i < N; ++i)
+    for (int j = 0; j < N; ++j)
+      for (int k = 0; k < N; ++k) {
+        const int idx[3] = {i, j, k};
+        int on = 0, face_tag = 0, edge_tag = 10;
+        for (int d = 0; d < 3; ++d)
+          if (idx[d] == 0 || idx[d] == n) {
+            ++on;
+            face_tag = 1 + 2 * d + (idx[d] == n);
+            edge_tag += (1 + 2 * d + (idx[d] == n)) * (d == 0 ? 1 : (d == 1 ? 7 : 49));
+          }
+        ModelRef cls{3, 1};
+        if (on > 0) cls = classify_boundary ? (on == 1 ? ModelRef{2, face_tag}
+                                               : on == 2 ? ModelRef{1, edge_tag} : ModelRef{0, edge_tag})
+                                            : ModelRef{0, 0};
+        m.add_point({i * h, j * h, k * h}, cls);
+      }
+  std::vector<std::vector<HalfFace>> cells(static_cast<std::size_t>(n) * n * n);
+  auto add = [&](std::array<PointId, 4> loop, bool has_lo, CellId lo, bool has_hi, CellId hi,
+                 std::int32_t tag) {
+    if (has_lo) {
+      const FaceId f = m.add_face(loop, lo, has_hi ? hi : CellId::invalid(),
+                                  has_hi ? FaceKind::Interior : FaceKind::External, has_hi ? 0 : tag);
+      cells[lo.idx].push_back(HalfFace(f, 0));
+      if (has_hi) cells[hi.idx].push_back(HalfFace(f, 1));
+    } else {
+      std::reverse(loop.begin(), loop.end());
+      const FaceId f = m.add_face(loop, hi, CellId::invalid(), FaceKind::External, tag);
+      cells[hi.idx].push_back(HalfFace(f, 0));
+    }
+  };
+  for (int a = 0; a <= n; ++a)
+    for (int b = 0; b < n; ++b)
+      for (int c = 0; c < n; ++c) {
+        // Loops with right-hand normal +x, +y, +z; the cell below the plane owns them.
+        add({pid(a, b, c), pid(a, b + 1, c), pid(a, b + 1, c + 1), pid(a, b, c + 1)}, a > 0,
+            a > 0 ? cid(a - 1, b, c) : CellId(), a < n, a < n ? cid(a, b, c) : CellId(), a == 0 ? 1 : 2);
+        add({pid(b, a, c), pid(b, a, c + 1), pid(b + 1, a, c + 1), pid(b + 1, a, c)}, a > 0,
+            a > 0 ? cid(b, a - 1, c) : CellId(), a < n, a < n ? cid(b, a, c) : CellId(), a == 0 ? 3 : 4);
+        add({pid(b, c, a), pid(b + 1, c, a), pid(b + 1, c + 1, a), pid(b, c + 1, a)}, a > 0,
+            a > 0 ? cid(b, c, a - 1) : CellId(), a < n, a < n ? cid(b, c, a) : CellId(), a == 0 ? 5 : 6);
+      }
+  for (const auto& hf : cells) m.add_cell(hf, 1, VertexId::invalid());
+  return m;
+}
+
+// The box faces/edges a grid index lies on, as (axis, side) pairs.
+std::set<std::pair<int, int>> box_constraints(const std::array<int, 3>& idx, int n) {
+  std::set<std::pair<int, int>> s;
+  for (int d = 0; d < 3; ++d)
+    if (idx[d] == 0 || idx[d] == n) s.insert({d, idx[d] == n});
+  return s;
+}
+// Same tags as hex_block(n, h, true).
+std::int32_t face_tag(std::pair<int, int> c) { return 1 + 2 * c.first + c.second; }
+std::int32_t edge_tag(const std::set<std::pair<int, int>>& cs) {
+  std::int32_t t = 10;
+  for (auto c : cs) t += face_tag(c) * (c.first == 0 ? 1 : (c.first == 1 ? 7 : 49));
+  return t;
+}
+
+// The Kuhn tetrahedralisation (6 tets per cube) of the same grid as hex_block,
+// with its box-face triangles classified {2, face tag} and box-edge segments
+// {1, edge tag}: the "original facetisation" of the block's boundary.
+ClassifiedTetMesh kuhn_primal(int n, double h = 1.0) {
+  const int N = n + 1;
+  std::vector<Point3> pts;
+  std::vector<std::array<int, 3>> idx;
+  for (int i = 0; i < N; ++i)
+    for (int j = 0; j < N; ++j)
+      for (int k = 0; k < N; ++k) {
+        pts.push_back({i * h, j * h, k * h});
+        idx.push_back({i, j, k});
+      }
+  auto vid = [&](int i, int j, int k) { return VertexId((i * N + j) * N + k); };
+  std::vector<std::array<VertexId, 4>> tets;
+  const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (int k = 0; k < n; ++k)
+        for (const auto& pm : perms) {
+          std::array<int, 3> c{i, j, k};
+          std::array<VertexId, 4> t;
+          t[0] = vid(c[0], c[1], c[2]);
+          for (int s = 0; s < 3; ++s) {
+            ++c[pm[s]];
+            t[s + 1] = vid(c[0], c[1], c[2]);
+          }
+          const Vec3 a = pts[t[0].idx];
+          if (dot(cross(pts[t[1].idx] - a, pts[t[2].idx] - a), pts[t[3].idx] - a) < 0) std::swap(t[1], t[2]);
+          tets.push_back(t);
+        }
+  ClassifiedTetMesh m = TetMeshBuilder::build_topology("<kuhn>", pts, tets, std::vector<std::int32_t>(tets.size(), 1));
+  auto& tc = TetMeshBuilder::triangle_class(m);
+  for (std::size_t f = 0; f < m.num_triangles(); ++f) {
+    std::set<std::pair<int, int>> common = box_constraints(idx[m.triangle(TriId(f))[0].idx], n);
+    for (int v = 1; v < 3; ++v) {
+      const auto cv = box_constraints(idx[m.triangle(TriId(f))[v].idx], n);
+      std::set<std::pair<int, int>> out;
+      std::set_intersection(common.begin(), common.end(), cv.begin(), cv.end(), std::inserter(out, out.begin()));
+      common = out;
+    }
+    tc[f] = common.size() == 1 ? ModelRef{2, face_tag(*common.begin())} : ModelRef{3, 1};
+  }
+  auto& ec = TetMeshBuilder::edge_class(m);
+  for (std::size_t e = 0; e < m.num_edges(); ++e) {
+    const auto a = box_constraints(idx[m.edge(EdgeId(e))[0].idx], n);
+    const auto b = box_constraints(idx[m.edge(EdgeId(e))[1].idx], n);
+    std::set<std::pair<int, int>> common;
+    std::set_intersection(a.begin(), a.end(), b.begin(), b.end(), std::inserter(common, common.begin()));
+    ec[e] = common.size() == 2 ? ModelRef{1, edge_tag(common)} : ModelRef{3, 1};
+  }
+  return m;
+}
+
+std::size_t invalid_cells(const PolyMesh& m) {
+  const auto v = star_shaped_verdicts(m);
+  return static_cast<std::size_t>(std::count_if(v.begin(), v.end(), [](auto x) { return !x.valid; }));
+}
+
+PolyMesh perturbed_block(int n, double amp, unsigned seed) {
+  PolyMesh m = hex_block(n);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-amp, amp);
+  for (std::size_t i = 0; i < m.num_points(); ++i)
+    if (m.point_class[i].dim == 3) m.points[i] += Vec3{u(rng), u(rng), u(rng)};
+  return m;
+}
+
+TEST(Optim, LocalUntanglesAVertexPushedThroughAFace) {
+  for (Metric metric : {Metric::Q1, Metric::Q2})
+    for (auto der : {OptimParams::Derivatives::FiniteDifference, OptimParams::Derivatives::Exact}) {
+      PolyMesh m = hex_block(3);
+      m.points[21] = {2.6, 1.2, 0.8};  // interior (1,1,1) pushed past (2,1,1)
+      ASSERT_GT(invalid_cells(m), 0u);
+      OptimParams p;
+      p.metric = metric;
+      p.derivatives = der;
+      const OptimReport r = optimize(m, nullptr, p);
+      EXPECT_GT(r.invalid_before, 0);
+      EXPECT_EQ(r.invalid_after, 0) << metric_name(metric);
+      EXPECT_EQ(invalid_cells(m), 0u);
+      EXPECT_GT(r.vertex_updates, 0u);
+    }
+}
+
+TEST(Optim, GlobalUntanglesAVertexPushedThroughAFace) {
+  PolyMesh m = hex_block(3);
+  m.points[21] = {2.6, 1.2, 0.8};
+  OptimParams p;
+  p.method = OptimParams::Method::Global;
+  const OptimReport r = optimize(m, nullptr, p);
+  EXPECT_GT(r.invalid_before, 0);
+  EXPECT_EQ(r.invalid_after, 0);
+  EXPECT_EQ(invalid_cells(m), 0u);
+}
+
+TEST(Optim, APassNeverTurnsAValidCellInvalid) {
+  for (auto method : {OptimParams::Method::Local, OptimParams::Method::Global}) {
+    PolyMesh m = perturbed_block(4, 0.3, 5);
+    m.points[(1 * 5 + 1) * 5 + 1] = {2.4, 1.3, 0.9};
+    m.points[(3 * 5 + 2) * 5 + 3] = {1.7, 2.6, 2.2};
+    const auto v0 = star_shaped_verdicts(m);
+    for (int it = 0; it < 4; ++it) {
+      const auto before = star_shaped_verdicts(m);
+      OptimParams p;
+      p.method = method;
+      p.max_iter = 1;
+      p.newton_steps = 1;
+      p.global_iterations_per_round = 5;
+      const OptimReport r = optimize(m, nullptr, p);
+      const auto after = star_shaped_verdicts(m);
+      for (std::size_t c = 0; c < after.size(); ++c)
+        if (before[c].valid) EXPECT_TRUE(after[c].valid) << c;
+      for (std::size_t i = 1; i < r.iterations.size(); ++i)
+        EXPECT_LE(r.iterations[i].invalid, r.iterations[i - 1].invalid);
+    }
+    EXPECT_GT(std::count_if(v0.begin(), v0.end(), [](auto x) { return !x.valid; }), 0);
+  }
+}
+
+TEST(Optim, LocalAndGlobalReachTheSameOptimum) {
+  const PolyMesh start = perturbed_block(4, 0.15, 9);
+  const PolyMesh regular = hex_block(4);
+  PolyMesh a = start, b = start;
+  OptimParams p;
+  p.tol = 1e-13;
+  p.max_iter = 200;
+  p.method = OptimParams::Method::Local;
+  const OptimReport ra = optimize(a, nullptr, p);
+  p.method = OptimParams::Method::Global;
+  p.max_iter = 30;
+  const OptimReport rb = optimize(b, nullptr, p);
+  const double fa = ra.iterations.back().objective, fb = rb.iterations.back().objective;
+  EXPECT_NEAR(fa / fb, 1.0, 1e-7);
+  double da = 0, db = 0, dab = 0;
+  for (std::size_t i = 0; i < a.num_points(); ++i) {
+    da = std::max(da, norm(a.points[i] - regular.points[i]));
+    db = std::max(db, norm(b.points[i] - regular.points[i]));
+    dab = std::max(dab, norm(a.points[i] - b.points[i]));
+  }
+  // The perturbed block relaxes back to the regular block (its symmetric optimum).
+  EXPECT_LT(da, 1e-4);
+  EXPECT_LT(db, 1e-4);
+  EXPECT_LT(dab, 1e-4);
+  EXPECT_LT(ra.after.mean, ra.before.mean);
+}
+
+TEST(Optim, ExactFiniteDifferenceAndAdjointGradientsAgree) {
+  const PolyMesh m = perturbed_block(3, 0.25, 2);
+  const MeshStencil s = build_stencil(m);
+  for (Metric metric : {Metric::Q1, Metric::Q2}) {
+    const auto V0 = cell_reference_volumes(s, metric, m.points);
+    for (std::size_t i = 0; i < m.num_points(); ++i) {
+      if (m.point_class[i].dim != 3) continue;
+      const PointId p(i);
+      const LocalObjective obj{s, m.points.data(), V0.data(), metric, 50.0, p};
+      using J = ceres::Jet<double, 3>;
+      const J x[3] = {J(m.points[i].x, 0), J(m.points[i].y, 1), J(m.points[i].z, 2)};
+      const J fj = obj(x);
+      // Adjoint: sum over p's cells of the per-cell gradient at p's slot.
+      Vec3 adj{};
+      double fa = 0;
+      for (std::uint32_t c : s.cells_of(p)) {
+        std::vector<Vec3> g(s.points_of(c).size());
+        fa += cell_energy_gradient(s, c, metric, m.points, V0[c], 50.0, g.data());
+        const auto pts = s.points_of(c);
+        adj += g[std::find(pts.begin(), pts.end(), p) - pts.begin()];
+      }
+      EXPECT_NEAR(fa / fj.a, 1.0, 1e-13);
+      for (int d = 0; d < 3; ++d) {
+        const double h = 1e-5;
+        double xp[3] = {m.points[i].x, m.points[i].y, m.points[i].z}, xm[3] = {xp[0], xp[1], xp[2]};
+        xp[d] += h;
+        xm[d] -= h;
+        const double fd = (obj(xp) - obj(xm)) / (2 * h);
+        const double scale = std::max(1.0, std::fabs(fj.v[d]));
+        EXPECT_NEAR(fd, fj.v[d], 1e-5 * scale) << i << " " << d;
+        EXPECT_NEAR(adj[d], fj.v[d], 1e-10 * scale) << i << " " << d;
+      }
+    }
+  }
+}
+
+TEST(Optim, BoundaryPointsStayOnTheOriginalFacetisation) {
+  const ClassifiedTetMesh primal = kuhn_primal(3);
+  for (auto method : {OptimParams::Method::Local, OptimParams::Method::Global}) {
+    PolyMesh m = hex_block(3, 1.0, true);
+    std::mt19937 rng(4);
+    std::uniform_real_distribution<double> u(-0.3, 0.3);
+    for (std::size_t i = 0; i < m.num_points(); ++i) {
+      Point3& x = m.points[i];
+      const int dim = m.point_class[i].dim;
+      for (int d = 0; d < 3; ++d) {
+        const bool on_bound = x[d] == 0.0 || x[d] == 3.0;
+        if (dim == 3 || ((dim == 2 || dim == 1) && !on_bound)) x[d] += u(rng);
+      }
+    }
+    const PolyMesh start = m;
+    OptimParams p;
+    p.method = method;
+    const OptimReport r = optimize(m, &primal, p);
+    EXPECT_EQ(r.invalid_after, 0);
+    EXPECT_LT(r.after.mean, r.before.mean);
+    const BoundaryConstraints bc(primal, start);
+    int moved_surface = 0;
+    for (std::size_t i = 0; i < m.num_points(); ++i) {
+      const int dim = m.point_class[i].dim;
+      if (dim == 0) EXPECT_EQ(m.points[i], start.points[i]);
+      if (dim == 1 || dim == 2) {
+        EXPECT_LT(bc.distance_to_entity(PointId(i), m.points[i]), 1e-12) << i;
+        moved_surface += norm(m.points[i] - start.points[i]) > 1e-3;
+      }
+    }
+    EXPECT_GT(moved_surface, 10);  // surface points did slide
+  }
+}
+
+TEST(Optim, DeterministicAcrossRuns) {
+  for (auto method : {OptimParams::Method::Local, OptimParams::Method::Global}) {
+    PolyMesh a = perturbed_block(4, 0.3, 21), b = a;
+    OptimParams p;
+    p.method = method;
+    p.max_iter = 3;
+    const OptimReport ra = optimize(a, nullptr, p), rb = optimize(b, nullptr, p);
+    EXPECT_EQ(a.points, b.points);
+    EXPECT_EQ(ra.vertex_updates, rb.vertex_updates);
+  }
+}
+
+TEST(Optim, MethodNoneOnlyReports) {
+  PolyMesh m = perturbed_block(3, 0.2, 1);
+  const PolyMesh start = m;
+  OptimParams p;
+  p.method = OptimParams::Method::None;
+  const OptimReport r = optimize(m, nullptr, p);
+  EXPECT_EQ(m.points, start.points);
+  EXPECT_EQ(r.iterations.size(), 1u);
+  EXPECT_EQ(r.vertex_updates, 0u);
+  const std::string js = r.to_json().dump();
+  for (const char* key : {"\"iterations\"", "\"invalid_before\"", "\"quality_after\"", "\"vertex_updates\""})
+    EXPECT_NE(js.find(key), std::string::npos) << key;
+}
+
+TEST(Optim, Parsers) {
+  EXPECT_EQ(parse_method("none"), OptimParams::Method::None);
+  EXPECT_EQ(parse_method("local"), OptimParams::Method::Local);
+  EXPECT_EQ(parse_method("global"), OptimParams::Method::Global);
+  EXPECT_EQ(parse_metric("q1"), Metric::Q1);
+  EXPECT_EQ(parse_metric("q2"), Metric::Q2);
+  EXPECT_EQ(parse_derivatives("fd"), OptimParams::Derivatives::FiniteDifference);
+  EXPECT_EQ(parse_derivatives("exact"), OptimParams::Derivatives::Exact);
+  EXPECT_THROW(parse_method("newton"), UsageError);
+  EXPECT_THROW(parse_metric("q3"), UsageError);
+  EXPECT_THROW(parse_derivatives("jet"), UsageError);
+}
+
+}  // namespace
+}  // namespace polydual
