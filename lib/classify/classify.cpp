@@ -129,14 +129,21 @@ VertexId third_vertex(const ClassifiedTetMesh& m, TriId f, EdgeId e) {
 // Assign tags to components: the first component carrying a given tag keeps it,
 // every other component gets a fresh tag above all given ones, in component order.
 std::vector<std::int32_t> assign_tags(const std::vector<std::int32_t>& given_tag_of_component,
-                                      std::int32_t max_given) {
+                                      std::int32_t /*max_given*/) {
+  // Fresh tags are the smallest positive integers no component was given, so
+  // a given tag of INT32_MAX cannot make them overflow.
+  std::set<std::int32_t> given(given_tag_of_component.begin(), given_tag_of_component.end());
   std::set<std::int32_t> used;
   std::vector<std::int32_t> out(given_tag_of_component.size());
-  std::int32_t next = std::max<std::int32_t>(max_given, 0) + 1;
+  std::int32_t next = 1;
   for (std::size_t c = 0; c < out.size(); ++c) {
     std::int32_t g = given_tag_of_component[c];
-    if (g != kNoTag && used.insert(g).second) out[c] = g;
-    else out[c] = next++;
+    if (g != kNoTag && used.insert(g).second) {
+      out[c] = g;
+      continue;
+    }
+    while (given.count(next)) ++next;
+    out[c] = next++;
   }
   return out;
 }
@@ -164,6 +171,9 @@ ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params) {
     const auto& t = soup.triangles[i];
     VertexId a = remap(t.v[0], "triangle", i), b = remap(t.v[1], "triangle", i),
              cc = remap(t.v[2], "triangle", i);
+    if (a == b || b == cc || a == cc)
+      throw InputError(soup.source, "triangle " + std::to_string(i + 1),
+                       "triangle " + vlist({t.v[0], t.v[1], t.v[2]}) + " repeats a vertex");
     TriId f = find_triangle(m, a, b, cc);
     if (!f.valid())
       throw InputError(soup.source, "triangle " + std::to_string(i + 1),
@@ -253,6 +263,8 @@ ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params) {
   std::int32_t max_edge_tag = 0;
   for (std::size_t i = 0; i < soup.edges.size(); ++i) {
     VertexId a = remap(soup.edges[i].v[0], "edge", i), b = remap(soup.edges[i].v[1], "edge", i);
+    if (a == b)
+      throw InputError(soup.source, "edge " + std::to_string(i + 1), "edge repeats a vertex");
     EdgeId e = m.find_edge(a, b);
     if (!e.valid())
       throw InputError(soup.source, "edge " + std::to_string(i + 1),

@@ -138,43 +138,61 @@ ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector
       for (VertexId v : m.tets_[t]) m.vstar_[fill[v.idx]++] = TetId(t);
   }
 
-  // Face adjacency: the neighbour across face i shares its three vertices; look
-  // for it in the smallest star of the three.
+  // Face adjacency: bucket the 4nt tet faces by their smallest vertex, sort
+  // each bucket by the other two, and pair equal keys (two at most).
   m.tet_adj_.assign(4 * nt, TetId::invalid());
   m.tet_tri_.assign(4 * nt, TriId::invalid());
-  for (std::size_t t = 0; t < nt; ++t) {
-    const auto& tv = m.tets_[t];
-    for (int i = 0; i < 4; ++i) {
-      if (m.tet_adj_[4 * t + i].valid()) continue;
-      VertexId f[3] = {tv[kTetFace[i][0]], tv[kTetFace[i][1]], tv[kTetFace[i][2]]};
-      VertexId pivot = f[0];
-      for (VertexId v : f)
-        if (m.vertex_tets(v).size() < m.vertex_tets(pivot).size()) pivot = v;
-      TetId found = TetId::invalid();
-      int found_local = -1;
-      for (TetId s : m.vertex_tets(pivot)) {
-        if (s.idx == t) continue;
-        int li[3] = {m.local_index(s, f[0]), m.local_index(s, f[1]), m.local_index(s, f[2])};
-        if (li[0] < 0 || li[1] < 0 || li[2] < 0) continue;
-        int opp = 6 - li[0] - li[1] - li[2];
-        if (m.tets_[s.idx][opp] == tv[i])
-          throw InputError(m.source_, tet_place(s.idx),
-                           "duplicated tet (same four vertices as tet " + std::to_string(t + 1) + ")");
-        if (found.valid())
-          throw InputError(m.source_, tet_place(t),
-                           "non-conformal mesh: triangle (" + std::to_string(f[0].idx + 1) + ", " +
-                               std::to_string(f[1].idx + 1) + ", " + std::to_string(f[2].idx + 1) +
-                               ") is shared by more than two tets (" + std::to_string(t + 1) + ", " +
-                               std::to_string(found.idx + 1) + ", " + std::to_string(s.idx + 1) + ")");
-        found = s;
-        found_local = opp;
+  {
+    struct FaceRec { std::uint32_t mid, max, code; };  // code = 4t + i
+    std::vector<std::uint32_t> off(nv + 1, 0);
+    auto sorted3 = [&](std::size_t t, int i, std::uint32_t& lo, std::uint32_t& mid, std::uint32_t& hi) {
+      const auto& tv = m.tets_[t];
+      std::uint32_t a = tv[kTetFace[i][0]].idx, b = tv[kTetFace[i][1]].idx, c = tv[kTetFace[i][2]].idx;
+      if (a > b) std::swap(a, b);
+      if (b > c) std::swap(b, c);
+      if (a > b) std::swap(a, b);
+      lo = a; mid = b; hi = c;
+    };
+    for (std::size_t t = 0; t < nt; ++t)
+      for (int i = 0; i < 4; ++i) {
+        std::uint32_t lo, mid, hi;
+        sorted3(t, i, lo, mid, hi);
+        ++off[lo + 1];
       }
-      if (found.valid()) {
-        if (m.tet_adj_[4 * found.idx + found_local].valid())
-          throw InputError(m.source_, tet_place(found.idx),
-                           "non-conformal mesh: a face of this tet is shared by more than two tets");
-        m.tet_adj_[4 * t + i] = found;
-        m.tet_adj_[4 * found.idx + found_local] = TetId(t);
+    std::partial_sum(off.begin(), off.end(), off.begin());
+    std::vector<FaceRec> recs(4 * nt);
+    std::vector<std::uint32_t> fill(off.begin(), off.end() - 1);
+    for (std::size_t t = 0; t < nt; ++t)
+      for (int i = 0; i < 4; ++i) {
+        std::uint32_t lo, mid, hi;
+        sorted3(t, i, lo, mid, hi);
+        recs[fill[lo]++] = {mid, hi, std::uint32_t(4 * t + i)};
+      }
+    for (std::size_t v = 0; v < nv; ++v) {
+      auto first = recs.begin() + off[v], last = recs.begin() + off[v + 1];
+      std::sort(first, last, [](const FaceRec& x, const FaceRec& y) {
+        return x.mid != y.mid ? x.mid < y.mid : (x.max != y.max ? x.max < y.max : x.code < y.code);
+      });
+      for (auto it = first; it != last;) {
+        auto jt = it + 1;
+        while (jt != last && jt->mid == it->mid && jt->max == it->max) ++jt;
+        const std::size_t n = std::size_t(jt - it);
+        const std::uint32_t t = it->code / 4, ti = it->code % 4;
+        if (n >= 2) {
+          const std::uint32_t s2 = (it + 1)->code / 4, si = (it + 1)->code % 4;
+          if (m.tets_[s2][si] == m.tets_[t][ti])
+            throw InputError(m.source_, tet_place(s2),
+                             "duplicated tet (same four vertices as tet " + std::to_string(t + 1) + ")");
+          if (n > 2)
+            throw InputError(m.source_, tet_place(t),
+                             "non-conformal mesh: triangle (" + std::to_string(v + 1) + ", " +
+                                 std::to_string(it->mid + 1) + ", " + std::to_string(it->max + 1) +
+                                 ") is shared by more than two tets (" + std::to_string(t + 1) + ", " +
+                                 std::to_string(s2 + 1) + ", " + std::to_string((it + 2)->code / 4 + 1) + ")");
+          m.tet_adj_[4 * t + ti] = TetId(s2);
+          m.tet_adj_[4 * s2 + si] = TetId(t);
+        }
+        it = jt;
       }
     }
   }

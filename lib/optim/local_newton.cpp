@@ -5,7 +5,12 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "optim/context.h"
@@ -55,13 +60,18 @@ class VertexNewton {
         return obj(xa);
       };
       const double zero[3] = {0, 0, 0};
-      const double f0 = f(zero);
+      double f0;
       Vec g = Vec::Zero();
       Mat H = Mat::Identity();
-      if (prm.derivatives == OptimParams::Derivatives::FiniteDifference)
-        fd_derivatives(f, k, h, f0, g, H);
-      else
-        exact_derivatives(obj, o, B, k, h, g, H);
+      if (prm.derivatives == OptimParams::Derivatives::Analytic) {
+        f0 = analytic_derivatives(p, B, k, g, H);
+      } else {
+        f0 = f(zero);
+        if (prm.derivatives == OptimParams::Derivatives::FiniteDifference)
+          fd_derivatives(f, k, h, f0, g, H);
+        else
+          exact_derivatives(obj, o, B, k, h, g, H);
+      }
       if (!g.allFinite() || !H.allFinite()) break;
       if (g.norm() * ell <= 1e-12 * std::fabs(f0)) break;  // stationary
       Vec d = positive_definite_solve_k(H, g, k);
@@ -110,6 +120,23 @@ class VertexNewton {
           !star_shaped_verdict(ctx_.stencil, c, ctx_.mesh.points, true, scratch_).valid)
         return false;
     return true;
+  }
+
+  // Analytic gradient and Hessian in x (local_objective_derivatives), projected
+  // on the parametric space: g_t = B^T g, H_t = B^T H B (x = o + B t is affine).
+  double analytic_derivatives(PointId p, const Vec3* B, int k, Vec& g, Mat& H) const {
+    const auto& prm = ctx_.params;
+    double gx[3], Hx[9];
+    const double f0 = local_objective_derivatives(ctx_.stencil, ctx_.mesh.points.data(), ctx_.V0.data(),
+                                                  prm.metric, prm.c, p, gx, Hx);
+    Vec3 HB[3];
+    for (int i = 0; i < k; ++i)
+      for (int r = 0; r < 3; ++r) HB[i][r] = Hx[3 * r] * B[i][0] + Hx[3 * r + 1] * B[i][1] + Hx[3 * r + 2] * B[i][2];
+    for (int i = 0; i < k; ++i) {
+      g[i] = B[i][0] * gx[0] + B[i][1] * gx[1] + B[i][2] * gx[2];
+      for (int j = 0; j < k; ++j) H(i, j) = dot(B[i], HB[j]);
+    }
+    return f0;
   }
 
   // Central differences (the paper): g_i = (f+i - f-i)/2h, H_ii = (f+i - 2f0 + f-i)/h^2,
@@ -193,39 +220,95 @@ class VertexNewton {
   std::vector<Point3> scratch_;
 };
 
+// Independent sets for a parallel Gauss-Seidel: the points of one pass (surface
+// or volume) are greedily coloured in index order so that two points of one
+// colour never share a cell. A point's update reads and writes only its own
+// cells (positions of their points, validity flags, change stamps) and its own
+// boundary primitive, so the points of one colour can move concurrently and the
+// result is the same as visiting them one by one in any order: it depends on the
+// colouring only, never on the thread count or the scheduling.
+struct ColourClasses {
+  std::vector<std::uint32_t> points;      // grouped by colour, increasing within a colour
+  std::vector<std::uint32_t> colour_off{0};
+};
+
+ColourClasses colour_points(const Context& ctx, bool surface) {
+  const std::size_t np = ctx.mesh.num_points();
+  constexpr std::uint32_t kUncoloured = UINT32_MAX;
+  std::vector<std::uint32_t> colour(np, kUncoloured);
+  std::vector<std::uint32_t> stamp;  // stamp[c] == p + 1: colour c is taken by a neighbour of p
+  std::uint32_t ncolours = 0;
+  for (std::size_t i = 0; i < np; ++i) {
+    const int k = ctx.dof[i];
+    if (k == 0 || surface != (k < 3)) continue;
+    const PointId p(i);
+    for (std::uint32_t c : ctx.stencil.cells_of(p))
+      for (PointId q : ctx.stencil.points_of(c))
+        if (colour[q.idx] != kUncoloured) stamp[colour[q.idx]] = static_cast<std::uint32_t>(i + 1);
+    std::uint32_t col = 0;
+    while (col < ncolours && stamp[col] == i + 1) ++col;
+    if (col == ncolours) { ++ncolours; stamp.push_back(0); }
+    colour[i] = col;
+  }
+  ColourClasses cc;
+  cc.colour_off.assign(ncolours + 1, 0);
+  for (std::size_t i = 0; i < np; ++i)
+    if (colour[i] != kUncoloured) ++cc.colour_off[colour[i] + 1];
+  for (std::uint32_t c = 0; c < ncolours; ++c) cc.colour_off[c + 1] += cc.colour_off[c];
+  cc.points.resize(cc.colour_off.back());
+  std::vector<std::uint32_t> fill(cc.colour_off.begin(), cc.colour_off.end() - 1);
+  for (std::size_t i = 0; i < np; ++i)
+    if (colour[i] != kUncoloured) cc.points[fill[colour[i]]++] = static_cast<std::uint32_t>(i);
+  return cc;
+}
+
 }  // namespace
 
 void run_local(Context& ctx) {
   const auto& prm = ctx.params;
-  const std::size_t np = ctx.mesh.num_points(), nc = ctx.mesh.num_cells();
-  VertexNewton solver(ctx);
-  // Active set: a point is revisited while a cell around it is invalid or changed
-  // in this or the previous sweep (points in settled regions are skipped).
+  const std::size_t nc = ctx.mesh.num_cells();
+  tbb::enumerable_thread_specific<VertexNewton> solvers([&] { return VertexNewton(ctx); });
+  // Surface pass (model edges and faces), then volume pass (paper 3.3).
+  const ColourClasses passes[2] = {colour_points(ctx, true), colour_points(ctx, false)};
+  // Active set: a point is visited while a cell around it is invalid, or a point
+  // of one of its cells moved by more than settle_move x its local length in
+  // this or the previous sweep; points in settled regions are skipped.
   std::vector<int> last_change(nc, 0);
   double f_prev = ctx.report->iterations.back().objective;
   for (int sweep = 1; sweep <= prm.max_iter; ++sweep) {
-    // Surface pass (model edges and faces), then volume pass (paper 3.3).
-    for (int pass = 0; pass < 2; ++pass) {
-      for (std::size_t i = 0; i < np; ++i) {
-        const PointId p(i);
-        const int k = ctx.dof[i];
-        if (k == 0 || (pass == 0) != (k < 3)) continue;
-        bool active = false;
-        for (std::uint32_t c : ctx.stencil.cells_of(p))
-          active = active || !ctx.cell_valid[c] || last_change[c] >= sweep - 1;
-        if (!active) continue;
-        double moved = 0;
-        const int n = solver.optimise(p, &moved);
-        ctx.report->vertex_updates += static_cast<std::uint64_t>(n);
-        if (n == 0) continue;
-        double v0 = 0;
-        for (std::uint32_t c : ctx.stencil.cells_of(p)) v0 += ctx.V0[c];
-        const double ell = std::cbrt(v0 / static_cast<double>(ctx.stencil.cells_of(p).size()));
-        if (moved > 1e-7 * ell)
-          for (std::uint32_t c : ctx.stencil.cells_of(p)) last_change[c] = sweep;
+    std::atomic<std::uint64_t> updates{0}, visited{0};
+    for (const ColourClasses& cc : passes) {
+      for (std::size_t col = 0; col + 1 < cc.colour_off.size(); ++col) {
+        const std::uint32_t b = cc.colour_off[col], e = cc.colour_off[col + 1];
+        tbb::parallel_for(tbb::blocked_range<std::uint32_t>(b, e, 4), [&](const auto& r) {
+          VertexNewton& solver = solvers.local();
+          std::uint64_t n_upd = 0, n_vis = 0;
+          for (std::uint32_t a = r.begin(); a != r.end(); ++a) {
+            const PointId p(cc.points[a]);
+            const auto cells = ctx.stencil.cells_of(p);
+            bool active = false;
+            for (std::uint32_t c : cells) active = active || !ctx.cell_valid[c] || last_change[c] >= sweep - 1;
+            if (!active) continue;
+            ++n_vis;
+            double moved = 0;
+            const int n = solver.optimise(p, &moved);
+            n_upd += static_cast<std::uint64_t>(n);
+            if (n == 0) continue;
+            double v0 = 0;
+            for (std::uint32_t c : cells) v0 += ctx.V0[c];
+            const double ell = std::cbrt(v0 / static_cast<double>(cells.size()));
+            if (moved > prm.settle_move * ell)
+              for (std::uint32_t c : cells) last_change[c] = sweep;
+          }
+          updates += n_upd;
+          visited += n_vis;
+        });
       }
     }
+    ctx.report->vertex_updates += updates;
     ctx.record(sweep);
+    ctx.report->iterations.back().visited = visited;
+    ctx.report->iterations.back().updates = updates;
     const double f = ctx.report->iterations.back().objective;
     if (std::fabs(f_prev - f) < prm.tol * std::fabs(f_prev)) break;
     f_prev = f;

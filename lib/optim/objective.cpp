@@ -57,4 +57,62 @@ double cell_energy_gradient(const MeshStencil& s, std::uint32_t c, Metric m,
   return energy;
 }
 
+double local_objective_derivatives(const MeshStencil& s, const Point3* pts, const double* V0, Metric m,
+                                   double c_delta, PointId p, double g[3], double H[9]) {
+  for (int i = 0; i < 3; ++i) g[i] = 0;
+  for (int i = 0; i < 9; ++i) H[i] = 0;
+  double sum = 0.0;
+  // Same arithmetic as for_each_corner<double> (stencil.h), so the value matches
+  // LocalObjective bit for bit; the weights are d e / d x_p (scalars).
+  for (std::uint32_t cell : s.cells_of(p)) {
+    const double v0 = V0[cell];
+    const auto cp = s.points_of(cell);
+    double R[3] = {0.0, 0.0, 0.0};
+    for (PointId q : cp) {
+      const Point3& y = pts[q.idx];
+      R[0] += y.x; R[1] += y.y; R[2] += y.z;
+    }
+    const double inv_m = 1.0 / static_cast<double>(cp.size());
+    R[0] *= inv_m; R[1] *= inv_m; R[2] *= inv_m;
+    const double wR = inv_m;
+    double e1[3], e2[3], e3[3];
+    for (std::uint32_t j = s.cell_loop_off[cell]; j < s.cell_loop_off[cell + 1]; ++j) {
+      const auto loop = s.loop(j);
+      const std::size_t k = loop.size();
+      if (m == Metric::Q1) {
+        double F[3] = {0.0, 0.0, 0.0};
+        bool has_p = false;
+        for (PointId q : loop) {
+          const Point3& y = pts[q.idx];
+          F[0] += y.x; F[1] += y.y; F[2] += y.z;
+          has_p = has_p || q == p;
+        }
+        const double inv_k = 1.0 / static_cast<double>(k);
+        F[0] *= inv_k; F[1] *= inv_k; F[2] *= inv_k;
+        const double wF = has_p ? inv_k : 0.0;
+        PointId qa = loop[k - 1];
+        for (std::size_t i = 0; i < k; ++i) {
+          const PointId qb = loop[i];
+          const Point3 &a = pts[qa.idx], &b = pts[qb.idx];
+          const double ia = qa == p ? 1.0 : 0.0, ib = qb == p ? 1.0 : 0.0;
+          for (int d = 0; d < 3; ++d) { e1[d] = F[d] - a[d]; e2[d] = b[d] - a[d]; e3[d] = R[d] - a[d]; }
+          sum += corner_kappa_mod_add_point_derivatives(e1, e2, e3, wF - ia, ib - ia, wR - ia, v0, c_delta, g, H);
+          for (int d = 0; d < 3; ++d) { e1[d] = a[d] - b[d]; e2[d] = F[d] - b[d]; e3[d] = R[d] - b[d]; }
+          sum += corner_kappa_mod_add_point_derivatives(e1, e2, e3, ia - ib, wF - ib, wR - ib, v0, c_delta, g, H);
+          qa = qb;
+        }
+      } else {
+        for (std::size_t i = 0; i < k; ++i) {
+          const PointId qp = loop[(i + k - 1) % k], qv = loop[i], qn = loop[(i + 1) % k];
+          const Point3 &pp = pts[qp.idx], &v = pts[qv.idx], &n = pts[qn.idx];
+          const double ip = qp == p ? 1.0 : 0.0, iv = qv == p ? 1.0 : 0.0, in = qn == p ? 1.0 : 0.0;
+          for (int d = 0; d < 3; ++d) { e1[d] = pp[d] - v[d]; e2[d] = n[d] - v[d]; e3[d] = R[d] - v[d]; }
+          sum += corner_kappa_mod_add_point_derivatives(e1, e2, e3, ip - iv, in - iv, wR - iv, v0, c_delta, g, H);
+        }
+      }
+    }
+  }
+  return sum;
+}
+
 }  // namespace polydual

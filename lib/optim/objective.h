@@ -43,6 +43,15 @@ struct LocalObjective {
   }
 };
 
+// The local objective of point p (LocalObjective at p's current position in
+// pts) with its analytic gradient g (3) and Hessian H (3x3 row-major) with
+// respect to p's coordinates, in one pass over p's corners
+// (corner_kappa_mod_add_point_derivatives). The returned value is bitwise equal
+// to LocalObjective<double> at pts[p] (same corners, same order, same
+// arithmetic). The default derivatives of the local scheme.
+double local_objective_derivatives(const MeshStencil& s, const Point3* pts, const double* V0, Metric m,
+                                   double c, PointId p, double g[3], double H[9]);
+
 // Energy of cell c (sum of kappa_mod over its corners) and, if grad != nullptr,
 // its gradient with respect to the cell's points, written to grad[i] for the
 // i-th point of s.points_of(c) (reverse-mode chain rule through F and R, from

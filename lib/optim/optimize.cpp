@@ -94,6 +94,8 @@ Json IterationRecord::to_json() const {
   j.set("min_quality", min_quality);
   j.set("mean_quality", mean_quality);
   j.set("seconds", seconds);
+  j.set("visited", static_cast<unsigned long long>(visited));
+  j.set("updates", static_cast<unsigned long long>(updates));
   return j;
 }
 
@@ -128,14 +130,16 @@ Metric parse_metric(std::string_view s) {
 OptimParams::Derivatives parse_derivatives(std::string_view s) {
   if (s == "fd") return OptimParams::Derivatives::FiniteDifference;
   if (s == "exact") return OptimParams::Derivatives::Exact;
-  throw UsageError("unknown derivatives '" + std::string(s) + "' (expected fd|exact)");
+  if (s == "analytic") return OptimParams::Derivatives::Analytic;
+  throw UsageError("unknown derivatives '" + std::string(s) + "' (expected analytic|fd|exact)");
 }
 
 const char* method_name(OptimParams::Method m) {
   return m == OptimParams::Method::None ? "none" : (m == OptimParams::Method::Local ? "local" : "global");
 }
 const char* derivatives_name(OptimParams::Derivatives d) {
-  return d == OptimParams::Derivatives::Exact ? "exact" : "fd";
+  return d == OptimParams::Derivatives::Exact ? "exact"
+         : (d == OptimParams::Derivatives::Analytic ? "analytic" : "fd");
 }
 
 }  // namespace polydual

@@ -102,4 +102,15 @@ inline T corner_kappa_mod(const T e1[3], const T e2[3], const T e3[3], double V0
 double corner_kappa_mod_gradient(const Vec3& e1, const Vec3& e2, const Vec3& e3, double V0,
                                  double c, Vec3& g1, Vec3& g2, Vec3& g3);
 
+// kappa_mod of the corner (e1, e2, e3) moved by one point x: e_i(t) = e_i + a_i t,
+// where a_i = d e_i / d x is a scalar (points enter corners directly, with
+// weight +-1, or through the means F and R, with weight 1/|face| or 1/|cell|).
+// Adds the gradient d kappa_mod/dt (3) and Hessian (3x3, row-major) at t = 0 to
+// g and H; returns kappa_mod, bitwise equal to corner_kappa_mod<double>.
+// Closed form (proofs/quality.md §6): e_i x e_j and V are affine in t, so
+// A, L are quadratics with explicit Hessians and V has none.
+double corner_kappa_mod_add_point_derivatives(const double e1[3], const double e2[3], const double e3[3],
+                                              double a1, double a2, double a3, double V0, double c,
+                                              double g[3], double H[9]);
+
 }  // namespace polydual
