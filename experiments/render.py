@@ -176,6 +176,7 @@ def table_tetopt(recs):
                 continue
             if not r.get("ok"):
                 err = (r.get("error") or (t or {}).get("error") or "failed").splitlines()[-1]
+                err = re.sub(r"\S*/", "", err.split("error:")[-1]).strip()
                 rows.append([d, n, inp, None, None, None, None, None,
                              "convert failed: " + err.replace("|", "/")[:90]])
                 continue
@@ -209,7 +210,7 @@ def table_peer(recs):
         rows.append([r["domain"], r["target_tets"], tool, r.get("cells"), r.get("faces"),
                      r.get("cell_zones"), r.get("face_zones"), r["wall_seconds"],
                      (r.get("peak_rss_kb") or 0) / 1024.0, r.get("failed_checks"), len(stars),
-                     "; ".join(sorted({short_star(l) for l in stars}))[:160] or "Mesh OK",
+                     "; ".join(short_star(l) for l in stars) or "Mesh OK",
                      inv])
     hdr = ["domain", "target tets", "tool", "cells", "faces", "cellZones", "faceZones",
            "wall s", "peak RSS MB", "checkMesh failed checks", "*** lines",
@@ -218,9 +219,15 @@ def table_peer(recs):
 
 
 def short_star(line):
+    """'***Concave cells (using face planes) found, number of cells: 199' ->
+    'Concave cells 199'."""
     line = re.sub(r"\s+", " ", line.replace("***", "")).strip()
-    line = re.sub(r"[-\d.e+]+", "#", line)
-    return line.split(",")[0][:60].replace("|", "/")
+    label = re.split(r"[:(,]| found| \d", line, maxsplit=1)[0]
+    label = re.sub(r"^Error in |^Number of ", "", label).strip(" .")
+    nums = re.findall(r"\b\d+\b", line)
+    count = nums[-1] if "number of" in line.lower() or "Number of" in line else (
+        nums[0] if nums else "")
+    return f"{label} {count}".strip().replace("|", "/")
 
 
 TABLES = {"meshes": table_meshes, "optimisers": table_optimisers, "timing": table_timing,
@@ -268,7 +275,25 @@ def read_tets(msh):
     arr = numpy_support.numpy_to_vtk(regions, deep=1)
     arr.SetName("region")
     g.GetCellData().AddArray(arr)
-    return g
+    # Triangles of internal model faces (interfaces, fractures): not on the
+    # boundary of the tet mesh, so the surface view would hide them.
+    from collections import Counter
+    faces = Counter()
+    for t in tets:
+        for f in ((t[0], t[1], t[2]), (t[0], t[1], t[3]), (t[0], t[2], t[3]), (t[1], t[2], t[3])):
+            faces[tuple(sorted(f))] += 1
+    inner = [b.data for b in m.cells if b.type == "triangle"]
+    inner = [tri for blk in inner for tri in blk if faces.get(tuple(sorted(tri)), 0) == 2]
+    tg = None
+    if inner:
+        tri = np.array(inner, dtype=np.int64)
+        tg = vtk.vtkUnstructuredGrid()
+        tg.SetPoints(pts)
+        conn = np.hstack([np.full((len(tri), 1), 3, dtype=np.int64), tri]).ravel()
+        ca2 = vtk.vtkCellArray()
+        ca2.SetCells(len(tri), numpy_support.numpy_to_vtkIdTypeArray(conn, deep=1))
+        tg.SetCells(vtk.VTK_TRIANGLE, ca2)
+    return g, tg
 
 
 def cut(grid, axis=1, value=0.5):
@@ -298,7 +323,8 @@ def count_invalid(grid):
     return int((v == 0).sum()), len(v)
 
 
-def render(grid, png, color_by, title, bounds, invalid_overlay=True, size=(900, 760)):
+def render(grid, png, color_by, title, bounds, invalid_overlay=True, size=(900, 760),
+           inner=None):
     """Surface with edges. color_by: 'valid' (green/red) or 'region' (materials)."""
     vtk = vtk_modules()
     ren = vtk.vtkRenderer()
@@ -340,6 +366,20 @@ def render(grid, png, color_by, title, bounds, invalid_overlay=True, size=(900, 
     p.SetAmbient(0.35)
     p.SetDiffuse(0.7)
     ren.AddActor(actor)
+    if inner is not None:
+        # Internal model faces drawn opaque through a faded tet surface.
+        gi = vtk.vtkGeometryFilter()
+        gi.SetInputData(inner)
+        mi = vtk.vtkPolyDataMapper()
+        mi.SetInputConnection(gi.GetOutputPort())
+        mi.ScalarVisibilityOff()
+        ai = vtk.vtkActor()
+        ai.SetMapper(mi)
+        ai.GetProperty().SetColor(0.95, 0.55, 0.15)
+        ai.GetProperty().EdgeVisibilityOn()
+        ai.GetProperty().SetEdgeColor(0.3, 0.15, 0)
+        ren.AddActor(ai)
+        p.SetOpacity(0.25)
     if color_by == "valid" and invalid_overlay:
         # Invalid cells hidden inside the cut are drawn again as a translucent-free
         # overlay on top of a faded mesh, so none is missed.
@@ -433,13 +473,14 @@ def figures(out, recs, size=None):
                     for r in [one(recs, kind="convert", domain=d, target_tets=n, variant=v)]
                     if r and r.get("ok")), None)
         msh = os.path.join(out, "work", f"{d}_{n}", f"{d}.msh")
-        tets = read_tets(msh)
+        tets, inner = read_tets(msh)
         init = read_vtu(os.path.join(out, none["vtu"]))
         bounds = init.GetBounds()
         ycut = (bounds[2] + bounds[3]) / 2
         panels, titles = [], []
         p = os.path.join(figdir, f"{d}_a_tets.png")
-        render(tets, p, "region", f"(a) {d}: {tets.GetNumberOfCells()} tets", bounds)
+        render(tets, p, "region", f"(a) {d}: {tets.GetNumberOfCells()} tets"
+               + (", internal model faces in orange" if inner else ""), bounds, inner=inner)
         panels.append(p); titles.append("(a) input tet mesh")
         ic = cut(init, 1, ycut)
         bad, tot = count_invalid(init)

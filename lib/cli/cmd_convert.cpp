@@ -23,7 +23,8 @@ const CommandSpec kConvert{
      {"--collapse-tol", "X", "short-edge collapse, relative to the mean primal edge (default 1e-3)"},
      {"--optimize", "none|local|global", "untangle and smooth (default local)"},
      {"--metric", "q1|q2", "quality measure for the optimiser (default q1)"},
-     {"--derivatives", "fd|exact", "finite differences (paper) or ceres::Jet (default fd)"},
+     {"--derivatives", "analytic|fd|exact",
+      "local-scheme Newton derivatives: closed form (default), finite differences (paper) or ceres::Jet"},
      {"--max-iter", "N", "optimiser sweeps/iterations cap (default 20)"},
      {"--json", "", "print one JSON summary object on stdout"}}};
 
