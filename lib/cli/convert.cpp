@@ -72,8 +72,9 @@ Json run_convert(const std::string& in, const std::string& out, const ConvertOpt
   Json summary = poly_summary(pm, verdicts, &m);
   // Flatten the dual summary into the top level (cells, faces, points, ...).
   for (const char* k : {"cells", "faces", "points", "invalid_cells", "closed_cells", "slit_cells", "face_errors",
-                        "negative_volume_cells", "materials", "missing_model_entities", "topology_ok"})
-    j.set(k, *summary.find(k));
+                        "negative_volume_cells", "materials", "missing_model_entities", "topology_ok",
+                        "invalid_by_class", "invalid_where"})
+    if (const Json* v = summary.find(k)) j.set(k, *v);
   j.set("invalid_before", invalid_before);
   j.set("invalid_after", count_invalid(verdicts));
   Json star = Json::object();

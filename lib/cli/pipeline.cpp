@@ -10,6 +10,9 @@
 
 namespace polydual::cli {
 
+// At most this many invalid cells are listed one by one in a summary.
+constexpr std::size_t kWhereLimit = 200;
+
 ClassifiedTetMesh load_classified(const std::string& path, const ClassifyParams& params, Json& seconds) {
   Timer t;
   TetSoup soup = read_tet_mesh(path);
@@ -50,6 +53,39 @@ Json poly_summary(const PolyMesh& pm, const std::vector<CellVerdict>& verdicts, 
   std::size_t invalid = 0;
   for (const auto& v : verdicts) invalid += !v.valid;
   j.set("invalid_cells", invalid);
+  if (primal) {
+    // Where the invalid cells sit: the classification of their primal vertex
+    // (paper §4: only at concave edges/corners and fracture tips).
+    const char* names[4] = {"model_vertex", "model_edge", "model_face", "interior"};
+    std::size_t by_dim[4] = {0, 0, 0, 0};
+    Json where = Json::array();
+    std::size_t listed = 0;
+    for (std::size_t c = 0; c < verdicts.size(); ++c) {
+      if (verdicts[c].valid) continue;
+      const VertexId v = pm.cell_primal[c];
+      const ModelRef cls = primal->vertex_class(v);
+      ++by_dim[cls.dim];
+      if (listed++ < kWhereLimit) {
+        Json o = Json::object();
+        o.set("cell", c);
+        o.set("primal_vertex", v.idx);
+        o.set("class", names[cls.dim]);
+        o.set("tag", cls.tag);
+        const Point3& p = primal->point(v);
+        Json xyz = Json::array();
+        xyz.push(p.x);
+        xyz.push(p.y);
+        xyz.push(p.z);
+        o.set("xyz", xyz);
+        o.set("bad_tets", verdicts[c].bad_tets);
+        where.push(o);
+      }
+    }
+    Json by = Json::object();
+    for (int d = 0; d < 4; ++d) by.set(names[d], by_dim[d]);
+    j.set("invalid_by_class", by);
+    j.set("invalid_where", where);
+  }
   j.set("closed_cells", rep.closed_cells);
   j.set("slit_cells", rep.slit_cells);
   j.set("face_errors", rep.face_errors);
