@@ -73,45 +73,50 @@ EdgeId ClassifiedTetMesh::find_edge(VertexId a, VertexId b) const {
 }
 
 std::vector<TetId> ClassifiedTetMesh::edge_ring(EdgeId e, bool* closed) const {
-  const VertexId a = edge_verts_[e.idx][0], b = edge_verts_[e.idx][1];
-  const TetId start = edge_tet_[e.idx];
-  // Walk backwards (across the face opposite `id`, which holds a, b, ic) to the
-  // first tet of an open ring.
-  TetId first = start;
-  bool is_closed = false;
-  for (;;) {
-    int ic, id;
-    ring_others(local_index(first, a), local_index(first, b), ic, id);
-    TetId prev = tet_neighbor(first, id);
-    if (!prev.valid()) break;
-    if (prev == start) { is_closed = true; break; }
-    first = prev;
-  }
-  std::vector<TetId> ring;
-  TetId t = first;
-  for (;;) {
-    ring.push_back(t);
-    int ic, id;
-    ring_others(local_index(t, a), local_index(t, b), ic, id);
-    TetId next = tet_neighbor(t, ic);  // across (a, b, id)
-    if (!next.valid() || next == first) break;
-    t = next;
-  }
-  if (closed) *closed = is_closed;
-  return ring;
+  std::vector<TetId> tets;
+  std::vector<TriId> tris;
+  bool c;
+  edge_ring(e, tets, tris, c);
+  if (closed) *closed = c;
+  return tets;
 }
 
 void ClassifiedTetMesh::edge_ring(EdgeId e, std::vector<TetId>& tets, std::vector<TriId>& tris,
                                   bool& closed) const {
-  tets = edge_ring(e, &closed);
-  tris.clear();
+  // Walk forwards from the stored tet, across the face after each tet
+  // (a, b, id); a closed ring comes back to the start. An open ring hits the
+  // boundary: then walk backwards from the start (across (a, b, ic)) and put
+  // that part in front, so the ring starts at the boundary.
   const VertexId a = edge_verts_[e.idx][0], b = edge_verts_[e.idx][1];
-  for (std::size_t k = 0; k < tets.size(); ++k) {
-    int ic, id;
-    ring_others(local_index(tets[k], a), local_index(tets[k], b), ic, id);
-    if (k == 0) tris.push_back(tet_triangle(tets[k], id));  // face (a, b, ic): before
-    tris.push_back(tet_triangle(tets[k], ic));              // face (a, b, id): after
+  const TetId start = edge_tet_[e.idx];
+  tets.clear();
+  tris.clear();
+  int ic, id;
+  ring_others(local_index(start, a), local_index(start, b), ic, id);
+  const TriId before_start = tet_triangle(start, id);
+  const TetId before_tet = tet_neighbor(start, id);
+  tris.push_back(before_start);
+  TetId t = start;
+  for (;;) {
+    tets.push_back(t);
+    tris.push_back(tet_triangle(t, ic));
+    const TetId next = tet_neighbor(t, ic);
+    if (!next.valid() || next == start) { closed = next.valid(); break; }
+    t = next;
+    ring_others(local_index(t, a), local_index(t, b), ic, id);
   }
+  if (closed || !before_tet.valid()) return;
+  // Open ring with tets before the start: collect them backwards.
+  std::vector<TetId> back_tets;
+  std::vector<TriId> back_tris;
+  for (TetId prev = before_tet; prev.valid();) {
+    ring_others(local_index(prev, a), local_index(prev, b), ic, id);
+    back_tets.push_back(prev);
+    back_tris.push_back(tet_triangle(prev, id));
+    prev = tet_neighbor(prev, id);
+  }
+  tets.insert(tets.begin(), back_tets.rbegin(), back_tets.rend());
+  tris.insert(tris.begin(), back_tris.rbegin(), back_tris.rend());
 }
 
 EdgeId ClassifiedTetMesh::triangle_edge(TriId f, VertexId a, VertexId b) const {
@@ -225,38 +230,38 @@ ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector
       }
     }
   }
-  // Edges: numbered by (lower vertex, higher vertex); per vertex a sorted list of
-  // higher neighbours for the tet -> edge lookup.
-  std::vector<std::uint32_t> nb_off(nv + 1, 0);
-  std::vector<std::uint32_t> nb;  // higher neighbours, CSR
+  // Edges: numbered by (lower vertex, higher vertex). Bucket the 6nt tet edges
+  // by their lower vertex and sort each bucket by (higher vertex, 6t+k).
   {
-    std::vector<std::uint32_t> stamp(nv, std::uint32_t(-1));
-    std::vector<std::uint32_t> tmp;
-    for (std::size_t a = 0; a < nv; ++a) {
-      tmp.clear();
-      for (TetId t : m.vertex_tets(VertexId(a)))
-        for (VertexId b : m.tets_[t.idx])
-          if (b.idx > a && stamp[b.idx] != a) { stamp[b.idx] = std::uint32_t(a); tmp.push_back(b.idx); }
-      std::sort(tmp.begin(), tmp.end());
-      nb.insert(nb.end(), tmp.begin(), tmp.end());
-      nb_off[a + 1] = std::uint32_t(nb.size());
-    }
-  }
-  m.edge_verts_.resize(nb.size());
-  m.edge_tet_.assign(nb.size(), TetId::invalid());
-  for (std::size_t a = 0; a < nv; ++a)
-    for (std::uint32_t k = nb_off[a]; k < nb_off[a + 1]; ++k)
-      m.edge_verts_[k] = {VertexId(a), VertexId(nb[k])};
-  m.tet_edge_.resize(6 * nt);
-  for (std::size_t t = 0; t < nt; ++t) {
-    const auto& tv = m.tets_[t];
-    for (int k = 0; k < 6; ++k) {
-      std::uint32_t a = tv[kTetEdge[k][0]].idx, b = tv[kTetEdge[k][1]].idx;
-      if (a > b) std::swap(a, b);
-      auto it = std::lower_bound(nb.begin() + nb_off[a], nb.begin() + nb_off[a + 1], b);
-      EdgeId e(static_cast<std::uint32_t>(it - nb.begin()));
-      m.tet_edge_[6 * t + k] = e;
-      if (!m.edge_tet_[e.idx].valid()) m.edge_tet_[e.idx] = TetId(t);
+    struct EdgeRec { std::uint32_t hi, code; };
+    std::vector<std::uint32_t> off(nv + 1, 0);
+    for (std::size_t t = 0; t < nt; ++t)
+      for (int k = 0; k < 6; ++k)
+        ++off[std::min(m.tets_[t][kTetEdge[k][0]].idx, m.tets_[t][kTetEdge[k][1]].idx) + 1];
+    std::partial_sum(off.begin(), off.end(), off.begin());
+    std::vector<EdgeRec> recs(6 * nt);
+    std::vector<std::uint32_t> fill(off.begin(), off.end() - 1);
+    for (std::size_t t = 0; t < nt; ++t)
+      for (int k = 0; k < 6; ++k) {
+        std::uint32_t a = m.tets_[t][kTetEdge[k][0]].idx, b = m.tets_[t][kTetEdge[k][1]].idx;
+        if (a > b) std::swap(a, b);
+        recs[fill[a]++] = {b, std::uint32_t(6 * t + k)};
+      }
+    m.tet_edge_.resize(6 * nt);
+    m.edge_verts_.reserve(6 * nt / 4);
+    m.edge_tet_.reserve(6 * nt / 4);
+    for (std::size_t v = 0; v < nv; ++v) {
+      auto first = recs.begin() + off[v], last = recs.begin() + off[v + 1];
+      std::sort(first, last, [](const EdgeRec& x, const EdgeRec& y) {
+        return x.hi != y.hi ? x.hi < y.hi : x.code < y.code;
+      });
+      for (auto it = first; it != last; ++it) {
+        if (it == first || it->hi != (it - 1)->hi) {
+          m.edge_verts_.push_back({VertexId(v), VertexId(it->hi)});
+          m.edge_tet_.push_back(TetId(it->code / 6));
+        }
+        m.tet_edge_[it->code] = EdgeId(m.edge_verts_.size() - 1);
+      }
     }
   }
   m.vertex_class_.assign(nv, ModelRef{});
