@@ -1,0 +1,110 @@
+// Classification inference and checks (SPEC §3).
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "classify/classify.h"
+#include "core/error.h"
+#include "generate/random_mesh.h"
+
+using namespace polydual;
+using ::testing::HasSubstr;
+
+namespace {
+// All boundary triangles of a soup (from a first classification), tagged 1..6
+// by the box side they lie on.
+std::vector<TaggedTriangle> box_triangles(const TetSoup& s) {
+  ClassifiedTetMesh m = classify(s);
+  std::vector<TaggedTriangle> out;
+  for (std::size_t f = 0; f < m.num_triangles(); ++f) {
+    if (m.triangle_tet(TriId(f), 1).valid()) continue;
+    const auto& v = m.triangle(TriId(f));
+    TaggedTriangle t;
+    for (int i = 0; i < 3; ++i) t.v[i] = v[i].idx;
+    t.tag = m.triangle_class(TriId(f)).tag;
+    out.push_back(t);
+  }
+  return out;
+}
+}  // namespace
+
+TEST(Classify, BoxByInference) {
+  ClassifiedTetMesh m = classify(kuhn_lattice(3, 3, 3));
+  EXPECT_EQ(m.model().count(0), 8u);
+  EXPECT_EQ(m.model().count(1), 12u);
+  EXPECT_EQ(m.model().count(2), 6u);
+  EXPECT_EQ(m.model().count(3), 1u);
+  for (const ModelEntity& e : m.model().entities[1]) EXPECT_EQ(e.bounds.size(), 2u);  // each box edge: 2 faces
+  for (const ModelEntity& v : m.model().entities[0]) EXPECT_EQ(v.bounds.size(), 3u);  // each corner: 3 edges
+}
+
+TEST(Classify, FeatureAngleControlsSplitting) {
+  ClassifyParams p;
+  p.feature_angle_deg = 120;  // box edges (90 degrees) no longer split faces
+  ClassifiedTetMesh m = classify(kuhn_lattice(2, 2, 2), p);
+  EXPECT_EQ(m.model().count(2), 1u);
+  EXPECT_EQ(m.model().count(1), 0u);
+  EXPECT_EQ(m.model().count(0), 0u);
+  p.feature_angle_deg = 0;
+  EXPECT_THROW(classify(kuhn_lattice(2, 2, 2), p), UsageError);
+}
+
+TEST(Classify, InterfaceBetweenTwoRegions) {
+  ClassifiedTetMesh m = classify(kuhn_lattice(4, 2, 2, 1, 1, 1, 2));
+  int interfaces = 0;
+  for (const ModelEntity& f : m.model().entities[2])
+    if (f.regions.size() == 2 && f.regions[0] != f.regions[1]) ++interfaces;
+  EXPECT_EQ(interfaces, 1);
+  EXPECT_EQ(m.model().count(2), 11u);
+}
+
+TEST(Classify, FractureHasFreeBoundaryEdges) {
+  RandomMeshParams p;
+  p.seed = 11;
+  p.num_points = 300;
+  p.fracture = true;
+  ClassifiedTetMesh m = classify(random_classified_mesh(p));
+  const ModelEntity* fr = m.model().find(2, kRandomFractureTag);
+  ASSERT_NE(fr, nullptr);
+  ASSERT_EQ(fr->regions.size(), 2u);
+  EXPECT_EQ(fr->regions[0], fr->regions[1]);
+  int free_edges = 0;  // model edges bounding only the fracture
+  for (const ModelEntity& e : m.model().entities[1])
+    if (e.bounds == std::vector<std::int32_t>{kRandomFractureTag}) ++free_edges;
+  EXPECT_GE(free_edges, 1);
+}
+
+TEST(Classify, GivenTagsAreKeptAndDeterministic) {
+  TetSoup s = kuhn_lattice(2, 2, 2);
+  s.triangles = box_triangles(s);
+  for (auto& t : s.triangles) t.tag += 100;
+  ClassifiedTetMesh a = classify(s), b = classify(s);
+  ASSERT_EQ(a.model().count(2), 6u);
+  for (const ModelEntity& f : a.model().entities[2]) EXPECT_GT(f.tag, 100);
+  for (std::size_t f = 0; f < a.num_triangles(); ++f) EXPECT_EQ(a.triangle_class(TriId(f)), b.triangle_class(TriId(f)));
+}
+
+TEST(Classify, FullClassificationContradictionsAreReported) {
+  TetSoup s = kuhn_lattice(2, 2, 2);
+  s.triangles = box_triangles(s);
+  s.full_classification = true;
+  s.triangles.pop_back();  // one boundary triangle classified on no model face
+  try {
+    classify(s);
+    FAIL() << "expected a contradiction";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("contradiction"));
+    EXPECT_THAT(e.what(), HasSubstr("external boundary"));
+  }
+  TetSoup t = kuhn_lattice(2, 2, 2);
+  t.triangles = box_triangles(t);
+  t.triangles[0].v = {t.tets[0][0], t.tets[0][1], 1000};
+  EXPECT_THROW(classify(t), InputError);
+}
+
+TEST(Classify, TagsNearInt32MaxDoNotOverflow) {
+  TetSoup s = kuhn_lattice(2, 2, 2);
+  s.triangles = box_triangles(s);
+  for (auto& t : s.triangles) t.tag = std::numeric_limits<std::int32_t>::max();  // one tag for all six sides
+  ClassifiedTetMesh m = classify(s);
+  EXPECT_EQ(m.model().count(2), 1u);  // given one tag: no geometric splitting
+}
