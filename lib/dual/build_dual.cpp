@@ -88,46 +88,32 @@ void make_edge_faces(const ClassifiedTetMesh& m, const VertexSides& sides, const
     for (std::size_t k = 0; k < n; ++k)
       if (m.on_model_face(tris[k])) cuts.push_back(k);
     if (!closed) cuts.push_back(n);  // tris[n] is the closing boundary triangle
-    auto emit = [&](std::size_t first, std::size_t count, bool bounded) {
-      // Tets ring[first .. first+count) (cyclically), between tris[first] and
-      // tris[first+count] when bounded.
+    // The fan of tets ring[s .. t) (indices mod n on a closed ring), between the
+    // model-face triangles tris[s] and tris[t] when `bounded`. tris has n + 1
+    // entries and tris[n] == tris[0] on a closed ring, so t <= 2n - 1 maps to
+    // tris[t - n] past the end.
+    auto emit = [&](std::size_t s, std::size_t t, bool bounded) {
       loop.clear();
-      const TriId start = tris[first % n];
-      const TriId end = tris[(first + count) % n == 0 && !closed ? n : (first + count) % n];
+      const TriId start = tris[s], end = tris[t > n ? t - n : t];
       if (bounded) loop.push_back(d.tri_point[start.idx]);
-      for (std::size_t k = 0; k < count; ++k) loop.push_back(PointId(ring[(first + k) % n].idx));
-      if (bounded) {
-        if (end != start) {
-          loop.push_back(d.tri_point[end.idx]);
-          if (d.edge_point[e].valid()) loop.push_back(d.edge_point[e]);
-        }
+      for (std::size_t k = s; k < t; ++k) loop.push_back(PointId(ring[k % n].idx));
+      // One cut on a closed ring (start == end, a fracture tip edge): the fan
+      // goes all the way round and closes on the start triangle's centre.
+      if (bounded && end != start) {
+        loop.push_back(d.tri_point[end.idx]);
+        if (d.edge_point[e].valid()) loop.push_back(d.edge_point[e]);
       }
-      const TetId t0 = ring[first % n];
-      const CellId owner = sides.cell(t0, m.local_index(t0, a));
-      const CellId neigh = sides.cell(t0, m.local_index(t0, b));
-      pm.add_face(loop, owner, neigh, FaceKind::Interior, 0);
+      const TetId t0 = ring[s % n];
+      pm.add_face(loop, sides.cell(t0, m.local_index(t0, a)), sides.cell(t0, m.local_index(t0, b)),
+                  FaceKind::Interior, 0);
     };
     if (cuts.empty()) {
       emit(0, n, false);  // interior edge: closed ring, no model face
     } else if (!closed) {
-      for (std::size_t j = 0; j + 1 < cuts.size(); ++j) {
-        // open ring: fans between consecutive cuts; the end triangle of the
-        // last fan is tris[n].
-        loop.clear();
-        const std::size_t s = cuts[j], t = cuts[j + 1];
-        loop.push_back(d.tri_point[tris[s].idx]);
-        for (std::size_t k = s; k < t; ++k) loop.push_back(PointId(ring[k].idx));
-        loop.push_back(d.tri_point[tris[t].idx]);
-        if (d.edge_point[e].valid()) loop.push_back(d.edge_point[e]);
-        const TetId t0 = ring[s];
-        pm.add_face(loop, sides.cell(t0, m.local_index(t0, a)), sides.cell(t0, m.local_index(t0, b)),
-                    FaceKind::Interior, 0);
-      }
+      for (std::size_t j = 0; j + 1 < cuts.size(); ++j) emit(cuts[j], cuts[j + 1], true);
     } else {
-      for (std::size_t j = 0; j < cuts.size(); ++j) {
-        const std::size_t s = cuts[j], t = j + 1 < cuts.size() ? cuts[j + 1] : cuts[0] + n;
-        emit(s, t - s, true);
-      }
+      for (std::size_t j = 0; j < cuts.size(); ++j)
+        emit(cuts[j], j + 1 < cuts.size() ? cuts[j + 1] : cuts[0] + n, true);
     }
   }
 }
