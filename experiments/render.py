@@ -423,7 +423,7 @@ def render(grid, png, color_by, title, bounds, invalid_overlay=True, size=(900, 
     cam.SetPosition(cx + 0.9 * diag, cy + 1.9 * diag, cz + 1.1 * diag)
     cam.SetViewUp(0, 0, 1)
     ren.ResetCamera(x0, x1, y0, y1, z0, z1)
-    cam.Zoom(1.15)
+    cam.Zoom(1.02)
     win = vtk.vtkRenderWindow()
     win.SetOffScreenRendering(1)
     win.AddRenderer(ren)
@@ -485,7 +485,7 @@ def figures(out, recs, size=None):
         ic = cut(init, 1, ycut)
         bad, tot = count_invalid(init)
         p = os.path.join(figdir, f"{d}_b_initial_cut.png")
-        render(ic, p, "valid", f"(b) initial dual, y < {ycut:g}: {bad} of {tot} invalid", bounds)
+        render(ic, p, "valid", f"(b) initial dual, cut y < {ycut:g} (whole mesh: {bad} of {tot} invalid)", bounds)
         panels.append(p); titles.append("(b) initial dual (cut)")
         if opt:
             og = read_vtu(os.path.join(out, opt["vtu"]))
@@ -493,7 +493,7 @@ def figures(out, recs, size=None):
             label = opt["variant"].replace("_", " ")
             p = os.path.join(figdir, f"{d}_c_optimised_cut.png")
             render(cut(og, 1, ycut), p, "valid",
-                   f"(c) {label}, y < {ycut:g}: {bad2} of {tot2} invalid", bounds)
+                   f"(c) {label}, cut y < {ycut:g} (whole mesh: {bad2} of {tot2} invalid)", bounds)
             panels.append(p); titles.append(f"(c) after {label} (cut)")
             p = os.path.join(figdir, f"{d}_d_optimised.png")
             render(og, p, "valid", f"(d) {label}: {tot2} cells, {bad2} invalid", bounds)

@@ -33,20 +33,22 @@ PY = "/usr/bin/python3"  # Debian's python: VTK, matplotlib, numpy, meshio
 DOMAINS = ["cube", "twomat", "fichera", "fracture"]
 OPENFOAM_ENV = {"WM_PROJECT_DIR": "/usr/share/openfoam"}
 
-# Converter variants: name -> (input, optimize, metric, derivatives, slow).
+# Converter variants: name -> (input, optimize, metric, derivatives, scope).
 # "raw" is the mesh from `polydual generate` (already passed through Gmsh's
 # default optimiser with its default threshold, see tet_optimize.py);
 # "tetopt" is that mesh after the stronger Gmsh pass of STEP 2.
+# scope: "all" sizes; "local" only up to --local-max-tets (the local Newton
+# scheme is the slow one); "compare" only up to --compare-max-tets.
 VARIANTS = {
-    "none":            ("raw", "none", "q1", "fd", False),
-    "local_q1_fd":     ("raw", "local", "q1", "fd", True),    # the paper's scheme
-    "local_q1_exact":  ("raw", "local", "q1", "exact", True),
-    "local_q2_fd":     ("raw", "local", "q2", "fd", True),
-    "global_q1":       ("raw", "global", "q1", "exact", False),
-    "global_q2":       ("raw", "global", "q2", "exact", False),
-    "tetopt_none":     ("tetopt", "none", "q1", "fd", False),
-    "tetopt_local_q1_fd": ("tetopt", "local", "q1", "fd", True),
-    "tetopt_global_q1": ("tetopt", "global", "q1", "exact", False),
+    "none":            ("raw", "none", "q1", "fd", "all"),
+    "local_q1_fd":     ("raw", "local", "q1", "fd", "local"),    # the paper's scheme
+    "local_q1_exact":  ("raw", "local", "q1", "exact", "compare"),
+    "local_q2_fd":     ("raw", "local", "q2", "fd", "compare"),
+    "global_q1":       ("raw", "global", "q1", "exact", "all"),
+    "global_q2":       ("raw", "global", "q2", "exact", "compare"),
+    "tetopt_none":     ("tetopt", "none", "q1", "fd", "all"),
+    "tetopt_local_q1_fd": ("tetopt", "local", "q1", "fd", "compare"),
+    "tetopt_global_q1": ("tetopt", "global", "q1", "exact", "compare"),
 }
 SMOKE_VARIANTS = ["none", "global_q1", "local_q1_fd", "tetopt_none", "tetopt_global_q1"]
 
@@ -276,6 +278,26 @@ class Harness:
         return out.strip().splitlines()[-1] if out.strip() else "ok"
 
 
+def in_scope(a, variant, n, peer=False):
+    """Whether `variant` runs at size n (peer: as a polydual OpenFOAM case, where
+    only the unoptimised dual runs at every size)."""
+    scope = VARIANTS[variant][4]
+    if scope == "local":
+        return n <= a.local_max_tets
+    if scope == "compare" or (peer and variant != "none"):
+        return n <= a.compare_max_tets
+    return True
+
+
+def sha256(path):
+    import hashlib
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for chunk in iter(lambda: f.read(1 << 20), b""):
+            h.update(chunk)
+    return h.hexdigest()
+
+
 def peak_rss_kb(time_v_stderr):
     m = re.search(r"Maximum resident set size \(kbytes\): (\d+)", time_v_stderr)
     return int(m.group(1)) if m else None
@@ -341,12 +363,18 @@ def parse_args(argv):
     ap.add_argument("--domains", default=",".join(DOMAINS))
     ap.add_argument("--variants", help="comma-separated subset of " + ",".join(VARIANTS))
     ap.add_argument("--local-max-tets", type=int, default=20000,
-                    help="run the (slow) local Newton variants only up to this size")
+                    help="run the paper's local Newton variant only up to this size")
+    ap.add_argument("--compare-max-tets", type=int, default=20000,
+                    help="run the comparison variants (exact derivatives, Q2, global Q2, "
+                    "optimisers on the tet-optimised input, polydual foam after "
+                    "optimisation) only up to this size")
     ap.add_argument("--max-iter", type=int, default=0,
                     help="optimiser iteration cap passed to convert (0: polydual default)")
     ap.add_argument("--feature-angle", type=int, default=30,
                     help="polyDualMesh feature angle (degrees)")
     ap.add_argument("--no-peer", action="store_true", help="skip the OpenFOAM comparison")
+    ap.add_argument("--peer-variants", default="none,global_q1",
+                    help="polydual variants written as OpenFOAM cases for checkMesh")
     ap.add_argument("--no-render", action="store_true")
     ap.add_argument("--paper", help="also copy figures/tables into this paper/ folder "
                     "(default: REPO/paper unless --smoke)")
@@ -356,6 +384,10 @@ def parse_args(argv):
         a.sizes = "2000" if a.smoke else "10000,100000"
     a.sizes = [int(s) for s in a.sizes.split(",")]
     a.domains = a.domains.split(",")
+    a.peer_variants = [v for v in a.peer_variants.split(",") if v]
+    for v in a.peer_variants:
+        if VARIANTS.get(v, ("tetopt",))[0] != "raw":
+            ap.error(f"--peer-variants: {v} is not a variant of the raw input")
     if a.variants:
         a.variants = a.variants.split(",")
     else:
@@ -379,7 +411,7 @@ def main(argv=None):
                {"sizes": a.sizes, "domains": a.domains, "variants": a.variants,
                 "smoke": a.smoke, "max_iter": a.max_iter,
                 "local_max_tets": a.local_max_tets, "feature_angle": a.feature_angle,
-                "polydual": a.polydual})
+                "polydual": a.polydual, "polydual_sha256": sha256(a.polydual)})
     steps = []
     for n in a.sizes:
         for d in a.domains:
@@ -387,13 +419,13 @@ def main(argv=None):
             if any(VARIANTS[v][0] == "tetopt" for v in a.variants):
                 steps.append((f"gmsh tet optimise {d} {n}", lambda d=d, n=n: h.tetopt(d, n)))
             for v in a.variants:
-                if VARIANTS[v][4] and n > a.local_max_tets:
+                if not in_scope(a, v, n):
                     continue
                 steps.append((f"convert {d} {n} {v}", lambda d=d, n=n, v=v: h.convert(d, n, v)))
             if not a.no_peer:
                 steps.append((f"OpenFOAM polyDualMesh {d} {n}",
                               lambda d=d, n=n: h.foam_peer(d, n)))
-                for v in ("none", "global_q1"):
+                for v in [v for v in a.peer_variants if in_scope(a, v, n, peer=True)]:
                     steps.append((f"polydual foam + checkMesh {d} {n} {v}",
                                   lambda d=d, n=n, v=v: h.foam_polydual(d, n, v)))
     if not a.no_render:

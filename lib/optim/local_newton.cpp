@@ -270,12 +270,22 @@ void run_local(Context& ctx) {
   tbb::enumerable_thread_specific<VertexNewton> solvers([&] { return VertexNewton(ctx); });
   // Surface pass (model edges and faces), then volume pass (paper 3.3).
   const ColourClasses passes[2] = {colour_points(ctx, true), colour_points(ctx, false)};
-  // Active set: a point is visited while a cell around it is invalid, or a point
+  ctx.report->colours = static_cast<std::uint32_t>(passes[0].colour_off.size() + passes[1].colour_off.size() - 2);
+  // Active set. A point is visited while a cell around it is invalid, or a point
   // of one of its cells moved by more than settle_move x its local length in
-  // this or the previous sweep; points in settled regions are skipped.
-  std::vector<int> last_change(nc, 0);
+  // this or the previous sweep (last_change[c] >= sweep - 1); points in settled
+  // regions are skipped. Untangling phase (up to untangle_sweeps sweeps, while
+  // invalid cells remain): nothing counts as changed at the start, so only the
+  // points of invalid cells and the growing rings around the points that moved
+  // are visited. Then one sweep visits every point (the smoothing starts
+  // everywhere) and later sweeps follow the settling rule.
+  constexpr int kNever = -2;
+  std::vector<int> last_change(nc, kNever);
+  int untangle_left = ctx.report->iterations.back().invalid > 0 ? prm.untangle_sweeps : 0;
+  bool full_sweep = untangle_left == 0;
   double f_prev = ctx.report->iterations.back().objective;
   for (int sweep = 1; sweep <= prm.max_iter; ++sweep) {
+    const bool untangling = untangle_left > 0;
     std::atomic<std::uint64_t> updates{0}, visited{0};
     for (const ColourClasses& cc : passes) {
       for (std::size_t col = 0; col + 1 < cc.colour_off.size(); ++col) {
@@ -286,8 +296,12 @@ void run_local(Context& ctx) {
           for (std::uint32_t a = r.begin(); a != r.end(); ++a) {
             const PointId p(cc.points[a]);
             const auto cells = ctx.stencil.cells_of(p);
-            bool active = false;
-            for (std::uint32_t c : cells) active = active || !ctx.cell_valid[c] || last_change[c] >= sweep - 1;
+            // Untangling: rings grow by one cell layer per sweep (changes of the
+            // previous sweep only); smoothing: changes of this or the previous sweep.
+            const int since = sweep - 1;
+            bool active = full_sweep;
+            for (std::uint32_t c : cells)
+              active = active || !ctx.cell_valid[c] || (last_change[c] >= since && (!untangling || last_change[c] < sweep));
             if (!active) continue;
             ++n_vis;
             double moved = 0;
@@ -307,9 +321,19 @@ void run_local(Context& ctx) {
     }
     ctx.report->vertex_updates += updates;
     ctx.record(sweep);
-    ctx.report->iterations.back().visited = visited;
-    ctx.report->iterations.back().updates = updates;
-    const double f = ctx.report->iterations.back().objective;
+    IterationRecord& rec = ctx.report->iterations.back();
+    rec.visited = visited;
+    rec.updates = updates;
+    if (untangling) {
+      // The objective test is meaningless while only a few points move.
+      --untangle_left;
+      if (rec.invalid == 0 || updates == 0) untangle_left = 0;
+      full_sweep = untangle_left == 0;
+      f_prev = rec.objective;
+      continue;
+    }
+    full_sweep = false;
+    const double f = rec.objective;
     if (std::fabs(f_prev - f) < prm.tol * std::fabs(f_prev)) break;
     f_prev = f;
   }

@@ -96,9 +96,11 @@ double local_objective_derivatives(const MeshStencil& s, const Point3* pts, cons
           const Point3 &a = pts[qa.idx], &b = pts[qb.idx];
           const double ia = qa == p ? 1.0 : 0.0, ib = qb == p ? 1.0 : 0.0;
           for (int d = 0; d < 3; ++d) { e1[d] = F[d] - a[d]; e2[d] = b[d] - a[d]; e3[d] = R[d] - a[d]; }
-          sum += corner_kappa_mod_add_point_derivatives(e1, e2, e3, wF - ia, ib - ia, wR - ia, v0, c_delta, g, H);
+          sum += has_p ? corner_kappa_mod_add_point_derivatives(e1, e2, e3, wF - ia, ib - ia, wR - ia, v0, c_delta, g, H)
+                       : corner_kappa_mod_add_e3_derivatives(e1, e2, e3, wR, v0, c_delta, g, H);
           for (int d = 0; d < 3; ++d) { e1[d] = a[d] - b[d]; e2[d] = F[d] - b[d]; e3[d] = R[d] - b[d]; }
-          sum += corner_kappa_mod_add_point_derivatives(e1, e2, e3, ia - ib, wF - ib, wR - ib, v0, c_delta, g, H);
+          sum += has_p ? corner_kappa_mod_add_point_derivatives(e1, e2, e3, ia - ib, wF - ib, wR - ib, v0, c_delta, g, H)
+                       : corner_kappa_mod_add_e3_derivatives(e1, e2, e3, wR, v0, c_delta, g, H);
           qa = qb;
         }
       } else {
@@ -107,7 +109,9 @@ double local_objective_derivatives(const MeshStencil& s, const Point3* pts, cons
           const Point3 &pp = pts[qp.idx], &v = pts[qv.idx], &n = pts[qn.idx];
           const double ip = qp == p ? 1.0 : 0.0, iv = qv == p ? 1.0 : 0.0, in = qn == p ? 1.0 : 0.0;
           for (int d = 0; d < 3; ++d) { e1[d] = pp[d] - v[d]; e2[d] = n[d] - v[d]; e3[d] = R[d] - v[d]; }
-          sum += corner_kappa_mod_add_point_derivatives(e1, e2, e3, ip - iv, in - iv, wR - iv, v0, c_delta, g, H);
+          sum += (ip != 0 || iv != 0 || in != 0)
+                     ? corner_kappa_mod_add_point_derivatives(e1, e2, e3, ip - iv, in - iv, wR - iv, v0, c_delta, g, H)
+                     : corner_kappa_mod_add_e3_derivatives(e1, e2, e3, wR, v0, c_delta, g, H);
         }
       }
     }

@@ -110,6 +110,7 @@ Json OptimReport::to_json() const {
   j.set("quality_after", after.to_json());
   j.set("seconds", seconds);
   j.set("vertex_updates", static_cast<unsigned long long>(vertex_updates));
+  j.set("colours", static_cast<unsigned long long>(colours));
   j.set("vertex_updates_per_second", seconds > 0 ? static_cast<double>(vertex_updates) / seconds : 0.0);
   return j;
 }

@@ -112,5 +112,9 @@ double corner_kappa_mod_gradient(const Vec3& e1, const Vec3& e2, const Vec3& e3,
 double corner_kappa_mod_add_point_derivatives(const double e1[3], const double e2[3], const double e3[3],
                                               double a1, double a2, double a3, double V0, double c,
                                               double g[3], double H[9]);
+// The same when only e3 moves (a1 = a2 = 0): the corners that see the point only
+// through the region centre R, most of a point's corners; cheaper.
+double corner_kappa_mod_add_e3_derivatives(const double e1[3], const double e2[3], const double e3[3],
+                                           double a3, double V0, double c, double g[3], double H[9]);
 
 }  // namespace polydual

@@ -77,4 +77,45 @@ double corner_kappa_mod_add_point_derivatives(const double e1[3], const double e
   return kmod;
 }
 
+double corner_kappa_mod_add_e3_derivatives(const double e1[3], const double e2[3], const double e3[3],
+                                           double a3, double V0, double c, double g[3], double H[9]) {
+  double A, L, V;
+  corner_invariants(e1, e2, e3, A, L, V);
+  const double delta = adaptive_delta(V, V0, c);
+  const double D = regularised_volume(V, delta);
+  const double S = std::sqrt(A * L);
+  const double kmod = 2.0 * S / D;
+  if (!(S > 0) || a3 == 0) return kmod;
+  const Vec3 E1{e1[0], e1[1], e1[2]}, E2{e2[0], e2[1], e2[2]}, E3{e3[0], e3[1], e3[2]};
+  const Vec3 c12 = cross(E1, E2);  // dV/de3
+  const double n12 = norm2(E1) + norm2(E2), d13 = dot(E1, E3), d23 = dot(E2, E3);
+  // dA/de3 = 2((|e1|^2+|e2|^2) e3 - (e1.e3) e1 - (e2.e3) e2), d2A = 2((..) I - e1e1^T - e2e2^T);
+  // dL/de3 = 2 e3, d2L = 2 I.
+  const Vec3 dA = 2.0 * (n12 * E3 - d13 * E1 - d23 * E2);
+  const Vec3 dL = 2.0 * E3;
+  const double inv2S = 1.0 / (2.0 * S);
+  const Vec3 dS = inv2S * (L * dA + A * dL);
+  const double W = std::sqrt(V * V + delta * delta);
+  const double s = delta / V0;
+  const double d1 = -s * (1.0 - s), d2 = s * (1.0 - s) * (1.0 - 2.0 * s) / V0;
+  const double D1 = (D + delta * d1) / W;
+  const double q = delta - V * d1;
+  const double D2 = (q * q + delta * d2 * W * W) / (W * W * W);
+  const double r0 = 1.0 / D, r1 = -D1 / (D * D), r2 = (2.0 * D1 * D1 - D * D2) / (D * D * D);
+  const Vec3 gk = (2.0 * r0) * dS + (2.0 * S * r1) * c12;
+  for (int i = 0; i < 3; ++i) g[i] += a3 * gk[i];
+  const double aa = a3 * a3, k0 = 2.0 * r0, k1 = 2.0 * r1, k2 = 2.0 * S * r2, iS = 1.0 / S;
+  const double diag = 2.0 * (L * n12 + A) * inv2S;
+  for (int i = 0; i < 3; ++i)
+    for (int j = i; j < 3; ++j) {
+      double hs = inv2S * (-2.0 * L * (E1[i] * E1[j] + E2[i] * E2[j]) + dA[i] * dL[j] + dL[i] * dA[j]) -
+                  iS * dS[i] * dS[j];
+      if (i == j) hs += diag;
+      const double h = aa * (k0 * hs + k1 * (dS[i] * c12[j] + c12[i] * dS[j]) + k2 * c12[i] * c12[j]);
+      H[3 * i + j] += h;
+      if (j != i) H[3 * j + i] += h;
+    }
+  return kmod;
+}
+
 }  // namespace polydual
