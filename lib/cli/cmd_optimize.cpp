@@ -21,7 +21,7 @@ const CommandSpec kOptimize{
      {"--feature-angle", "DEG", "for --primal (default 30)"},
      {"--optimize", "local|global", "optimiser (default local)"},
      {"--metric", "q1|q2", "quality measure (default q1)"},
-     {"--derivatives", "fd|exact", "local scheme derivatives (default fd)"},
+     {"--derivatives", "analytic|fd|exact", "local scheme derivatives (default analytic; fd = the paper)"},
      {"--max-iter", "N", "iterations cap (default 20)"},
      {"--json", "", "print one JSON summary object"}}};
 

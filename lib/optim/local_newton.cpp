@@ -1,6 +1,8 @@
 // The paper's local scheme (3.3): Gauss-Seidel sweeps; at each free point, Newton
 // on grad f = 0 for the local objective, in the point's local parametric space
 // (R^3 inside, the tangent plane/line of its current primitive on the boundary).
+// Sweeps visit colour classes of independent points in parallel (deterministic
+// for any thread count) and an active set; proofs/quality.md §6-7.
 #include <ceres/jet.h>
 
 #include <Eigen/Cholesky>

@@ -75,6 +75,9 @@ double local_objective_derivatives(const MeshStencil& s, const Point3* pts, cons
     const double inv_m = 1.0 / static_cast<double>(cp.size());
     R[0] *= inv_m; R[1] *= inv_m; R[2] *= inv_m;
     const double wR = inv_m;
+    // Corners that see p only through R: derivatives in e3 summed per cell, then
+    // scaled once by wR (gradient) and wR^2 (Hessian).
+    double gR[3] = {0.0, 0.0, 0.0}, HR[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
     double e1[3], e2[3], e3[3];
     for (std::uint32_t j = s.cell_loop_off[cell]; j < s.cell_loop_off[cell + 1]; ++j) {
       const auto loop = s.loop(j);
@@ -97,10 +100,10 @@ double local_objective_derivatives(const MeshStencil& s, const Point3* pts, cons
           const double ia = qa == p ? 1.0 : 0.0, ib = qb == p ? 1.0 : 0.0;
           for (int d = 0; d < 3; ++d) { e1[d] = F[d] - a[d]; e2[d] = b[d] - a[d]; e3[d] = R[d] - a[d]; }
           sum += has_p ? corner_kappa_mod_add_point_derivatives(e1, e2, e3, wF - ia, ib - ia, wR - ia, v0, c_delta, g, H)
-                       : corner_kappa_mod_add_e3_derivatives(e1, e2, e3, wR, v0, c_delta, g, H);
+                       : corner_kappa_mod_add_e3_derivatives(e1, e2, e3, 1.0, v0, c_delta, gR, HR);
           for (int d = 0; d < 3; ++d) { e1[d] = a[d] - b[d]; e2[d] = F[d] - b[d]; e3[d] = R[d] - b[d]; }
           sum += has_p ? corner_kappa_mod_add_point_derivatives(e1, e2, e3, ia - ib, wF - ib, wR - ib, v0, c_delta, g, H)
-                       : corner_kappa_mod_add_e3_derivatives(e1, e2, e3, wR, v0, c_delta, g, H);
+                       : corner_kappa_mod_add_e3_derivatives(e1, e2, e3, 1.0, v0, c_delta, gR, HR);
           qa = qb;
         }
       } else {
@@ -111,10 +114,12 @@ double local_objective_derivatives(const MeshStencil& s, const Point3* pts, cons
           for (int d = 0; d < 3; ++d) { e1[d] = pp[d] - v[d]; e2[d] = n[d] - v[d]; e3[d] = R[d] - v[d]; }
           sum += (ip != 0 || iv != 0 || in != 0)
                      ? corner_kappa_mod_add_point_derivatives(e1, e2, e3, ip - iv, in - iv, wR - iv, v0, c_delta, g, H)
-                     : corner_kappa_mod_add_e3_derivatives(e1, e2, e3, wR, v0, c_delta, g, H);
+                     : corner_kappa_mod_add_e3_derivatives(e1, e2, e3, 1.0, v0, c_delta, gR, HR);
         }
       }
     }
+    for (int i = 0; i < 3; ++i) g[i] += wR * gR[i];
+    for (int i = 0; i < 9; ++i) H[i] += (wR * wR) * HR[i];
   }
   return sum;
 }
