@@ -71,6 +71,19 @@ int cmd_demo(const Args& a) {
     std::fflush(stdout);
     all.push(j);
   }
+  // Where the cells that stay invalid sit (paper §4: concave edges/corners and
+  // fracture tips), and how many are slit cells at fracture tips.
+  for (std::size_t i = 0; i < domains.size(); ++i) {
+    Json& j = all.at(i);
+    if (j.find("invalid_after")->dump() == "0") continue;
+    Json* by = j.find("invalid_by_class");
+    std::printf("%s: %s cells stay invalid: %s at model vertices, %s at model edges, %s on model faces, "
+                "%s interior; %s slit cells (fracture tips)\n",
+                domain_name(domains[i]).c_str(), j.find("invalid_after")->dump().c_str(),
+                by->find("model_vertex")->dump().c_str(), by->find("model_edge")->dump().c_str(),
+                by->find("model_face")->dump().c_str(), by->find("interior")->dump().c_str(),
+                j.find("slit_cells")->dump().c_str());
+  }
   write_file_atomically(dir / "summary.json", [&](std::ostream& os) { os << all.dump() << "\n"; });
   std::printf("outputs in %s/ (open the .vtu files in ParaView; *_case/ are OpenFOAM cases)\n",
               dir.string().c_str());

@@ -36,6 +36,8 @@ class Json {
   // Array: append.
   Json& push(Json value);
   Json* find(const std::string& key);
+  // Array element i (the array must have it).
+  Json& at(std::size_t i) { return std::get<Array>(v_).at(i); }
 
   std::string dump(int indent = 2) const;
 
