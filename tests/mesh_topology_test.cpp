@@ -1,0 +1,90 @@
+// ClassifiedTetMesh adjacency invariants on random classified meshes:
+// the face-adjacency involution, triangle/tet consistency, closed rings around
+// interior edges and consistent stars.
+#include <gtest/gtest.h>
+
+#include <set>
+
+#include "classify/classify.h"
+#include "generate/random_mesh.h"
+#include "predicates/predicates.h"
+
+using namespace polydual;
+
+TEST(MeshTopology, AdjacencyInvolutionRingsAndStars) {
+  for (std::uint64_t seed = 1; seed <= 100; ++seed) {
+    RandomMeshParams p;
+    p.seed = seed;
+    p.num_points = 40 + int(seed % 40);
+    p.regions = 1 + int(seed % 2);
+    p.fracture = seed % 3 == 0;
+    p.lattice_points = seed % 5 == 0;
+    ClassifiedTetMesh m = classify(random_classified_mesh(p));
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    std::size_t boundary_faces = 0;
+    for (std::size_t t = 0; t < m.num_tets(); ++t) {
+      for (int i = 0; i < 4; ++i) {
+        const TetId s = m.tet_neighbor(TetId(t), i);
+        const TriId f = m.tet_triangle(TetId(t), i);
+        if (!s.valid()) {
+          ++boundary_faces;
+          EXPECT_FALSE(m.triangle_tet(f, 1).valid());
+          continue;
+        }
+        // TT(TT(t,i), TTi(t,i)) == t, and both sides name the same triangle.
+        int back = -1;
+        for (int j = 0; j < 4; ++j)
+          if (m.tet_neighbor(s, j) == TetId(t)) back = j;
+        ASSERT_GE(back, 0);
+        EXPECT_EQ(m.tet_triangle(s, back), f);
+        // The shared triangle is the face opposite i (3 shared vertices).
+        EXPECT_LT(m.local_index(s, m.tet(TetId(t))[i]), 0);
+      }
+    }
+    // Triangles: oriented out of their first tet (exact orientation test).
+    for (std::size_t f = 0; f < m.num_triangles(); ++f) {
+      const auto& v = m.triangle(TriId(f));
+      const TetId t0 = m.triangle_tet(TriId(f), 0);
+      VertexId opp = VertexId::invalid();
+      for (VertexId x : m.tet(t0))
+        if (x != v[0] && x != v[1] && x != v[2]) opp = x;
+      EXPECT_EQ(orient3d(m.point(v[0]), m.point(v[1]), m.point(v[2]), m.point(opp)), Sign::Negative);
+    }
+    // Euler-style count: 4 T = 2 F_interior + F_boundary.
+    EXPECT_EQ(4 * m.num_tets(), 2 * m.num_triangles() - boundary_faces);
+    // Rings: interior edges have closed rings; consecutive tets share the
+    // triangle between them; every tet of the edge appears once.
+    std::vector<TetId> ring;
+    std::vector<TriId> tris;
+    for (std::size_t e = 0; e < m.num_edges(); ++e) {
+      bool closed;
+      m.edge_ring(EdgeId(e), ring, tris, closed);
+      const auto [a, b] = m.edge(EdgeId(e));
+      std::size_t incident = 0;
+      for (TetId t : m.vertex_tets(a)) incident += m.local_index(t, b) >= 0;
+      EXPECT_EQ(ring.size(), incident);
+      EXPECT_EQ(tris.size(), ring.size() + 1);
+      if (closed) EXPECT_EQ(tris.front(), tris.back());
+      bool on_boundary = false;
+      for (TetId t : m.vertex_tets(a))
+        for (int i = 0; i < 4; ++i)
+          if (m.local_index(t, b) >= 0 && !m.tet_neighbor(t, i).valid() && m.tet(t)[i] != a && m.tet(t)[i] != b)
+            on_boundary = true;
+      EXPECT_EQ(closed, !on_boundary);
+      for (std::size_t k = 0; k + 1 < ring.size(); ++k) {
+        const TriId f = tris[k + 1];
+        EXPECT_TRUE((m.triangle_tet(f, 0) == ring[k] && m.triangle_tet(f, 1) == ring[k + 1]) ||
+                    (m.triangle_tet(f, 1) == ring[k] && m.triangle_tet(f, 0) == ring[k + 1]));
+      }
+    }
+    // Stars: tet t is in the star of each of its four vertices exactly once.
+    std::size_t star_total = 0;
+    for (std::size_t v = 0; v < m.num_vertices(); ++v) {
+      auto st = m.vertex_tets(VertexId(v));
+      star_total += st.size();
+      for (TetId t : st) EXPECT_GE(m.local_index(t, VertexId(v)), 0);
+    }
+    EXPECT_EQ(star_total, 4 * m.num_tets());
+    if (HasFailure()) break;
+  }
+}
