@@ -4,6 +4,9 @@
 
 namespace polydual {
 
+// Works in place (no second PolyMesh: the cleanup runs at the memory peak of
+// the dual construction): loops only shrink and faces/points only disappear, so
+// every write index is at most the read index.
 CleanupResult cleanup_dual(PolyMesh& pm, const std::vector<std::pair<PointId, PointId>>& exact_pairs,
                            double collapse_length) {
   CleanupResult res;
@@ -28,29 +31,49 @@ CleanupResult cleanup_dual(PolyMesh& pm, const std::vector<std::pair<PointId, Po
       }
     }
   }
-  // Compact the points that survive (roots used by a surviving face).
-  std::vector<PointId> new_id(np, PointId::invalid());
-  PolyMesh out;
-  out.face_offsets = {0};
-  std::vector<PointId> loop;
+  // Rewrite loops through the representatives, drop repeated consecutive
+  // points and faces left with fewer than 3; mark the points still used.
+  std::vector<char> used(np, 0);
+  std::size_t out_f = 0, out_p = 0, read = 0;
   for (std::size_t f = 0; f < nf; ++f) {
-    loop.clear();
-    for (PointId p : pm.face(FaceId(f))) {
-      PointId r(uf.find(p.idx));
-      if (loop.empty() || loop.back() != r) loop.push_back(r);
+    const std::size_t begin = read, end = pm.face_offsets[f + 1];
+    read = end;
+    const std::size_t start = out_p;
+    for (std::size_t i = begin; i < end; ++i) {
+      const PointId r(uf.find(pm.face_points[i].idx));
+      if (out_p == start || pm.face_points[out_p - 1] != r) pm.face_points[out_p++] = r;
     }
-    while (loop.size() > 1 && loop.front() == loop.back()) loop.pop_back();
-    if (loop.size() < 3) { ++res.dropped_faces; continue; }
-    for (PointId& r : loop) {
-      if (!new_id[r.idx].valid()) new_id[r.idx] = out.add_point(pm.points[r.idx], pm.point_class[r.idx]);
-      r = new_id[r.idx];
-    }
-    out.add_face(loop, pm.face_owner[f], pm.face_neighbour[f], pm.face_kind[f], pm.face_tag[f]);
+    while (out_p - start > 1 && pm.face_points[start] == pm.face_points[out_p - 1]) --out_p;
+    if (out_p - start < 3) { out_p = start; ++res.dropped_faces; continue; }
+    for (std::size_t i = start; i < out_p; ++i) used[pm.face_points[i].idx] = 1;
+    pm.face_offsets[out_f + 1] = static_cast<std::uint32_t>(out_p);
+    pm.face_owner[out_f] = pm.face_owner[f];
+    pm.face_neighbour[out_f] = pm.face_neighbour[f];
+    pm.face_kind[out_f] = pm.face_kind[f];
+    pm.face_tag[out_f] = pm.face_tag[f];
+    ++out_f;
   }
-  out.cell_offsets = pm.cell_offsets;
-  out.cell_material = std::move(pm.cell_material);
-  out.cell_primal = std::move(pm.cell_primal);
-  pm = std::move(out);
+  pm.face_points.resize(out_p);
+  pm.face_offsets.resize(out_f + 1);
+  pm.face_owner.resize(out_f);
+  pm.face_neighbour.resize(out_f);
+  pm.face_kind.resize(out_f);
+  pm.face_tag.resize(out_f);
+  // Compact the used points, keeping their order.
+  std::vector<PointId> new_id(np, PointId::invalid());
+  std::size_t k = 0;
+  for (std::size_t p = 0; p < np; ++p) {
+    if (!used[p]) continue;
+    new_id[p] = PointId(k);
+    pm.points[k] = pm.points[p];
+    pm.point_class[k] = pm.point_class[p];
+    ++k;
+  }
+  pm.points.resize(k);
+  pm.point_class.resize(k);
+  for (PointId& p : pm.face_points) p = new_id[p.idx];
+  pm.points.shrink_to_fit();
+  pm.point_class.shrink_to_fit();
   return res;
 }
 
