@@ -362,7 +362,7 @@ def parse_args(argv):
                     "(default 10000,100000; smoke 2000)")
     ap.add_argument("--domains", default=",".join(DOMAINS))
     ap.add_argument("--variants", help="comma-separated subset of " + ",".join(VARIANTS))
-    ap.add_argument("--local-max-tets", type=int, default=20000,
+    ap.add_argument("--local-max-tets", type=int, default=100000,
                     help="run the paper's local Newton variant only up to this size")
     ap.add_argument("--compare-max-tets", type=int, default=20000,
                     help="run the comparison variants (exact derivatives, Q2, global Q2, "
