@@ -47,7 +47,9 @@ Json run_convert(const std::string& in, const std::string& out, const ConvertOpt
   std::vector<CellVerdict> verdicts = star_shaped_verdicts(pm);
   seconds.set("star_test", tc.seconds());
   const std::size_t invalid_before = count_invalid(verdicts);
-  const auto star_calls = predicate_counters().star_calls.load(), star_exact = predicate_counters().star_exact.load();
+  std::uint64_t star_calls = 0;
+  for (const CellVerdict& v : verdicts) star_calls += static_cast<std::uint64_t>(v.total_tets);
+  const auto star_exact = predicate_counters().star_exact.load();
 
   Json optim = nullptr;
   if (o.optim.method != OptimParams::Method::None) {

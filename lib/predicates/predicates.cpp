@@ -149,7 +149,6 @@ NT star_det(const Point3& a, const Point3& b, std::span<const Point3> face, std:
 Sign decomposition_tet_sign(const Point3& a, const Point3& b, std::span<const Point3> face,
                             std::span<const Point3> cell) {
   auto& cnt = predicate_counters();
-  cnt.star_calls.fetch_add(1, std::memory_order_relaxed);
   // Static filter (proofs/star_filter.md): with k = |face|, m = |cell|,
   //   |fl(det) - det| <= (k + m + 10) * eps * P,
   //   P = |u|.( |S|abs x |T|abs )  (permanent on absolute values),

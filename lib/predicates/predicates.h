@@ -50,10 +50,12 @@ Sign decomposition_tet_sign_inexact(const Point3& a, const Point3& b, std::span<
                                     std::span<const Point3> cell);
 
 // How often the exact paths ran (relaxed atomics; for reports and benchmarks).
+// Only the rare exact fallbacks touch these shared counters: the callers know
+// how many predicates they evaluated (no contended write on the hot path).
 struct PredicateCounters {
-  std::atomic<std::uint64_t> star_calls{0}, star_exact{0};
+  std::atomic<std::uint64_t> star_exact{0};
   std::atomic<std::uint64_t> circ_calls{0}, circ_exact{0};
-  void reset() { star_calls = star_exact = circ_calls = circ_exact = 0; }
+  void reset() { star_exact = circ_calls = circ_exact = 0; }
 };
 PredicateCounters& predicate_counters();
 
