@@ -213,11 +213,9 @@ ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params) {
 
   // ---- per-edge incidence of model-face triangles
   std::vector<std::uint32_t> e_off(ne + 1, 0);
-  std::vector<std::array<EdgeId, 3>> tri_e(nf);
   for (std::size_t f = 0; f < nf; ++f) {
     if (!is_mf[f]) continue;
-    tri_e[f] = triangle_edges(m, TriId(f));
-    for (EdgeId e : tri_e[f]) ++e_off[e.idx + 1];
+    for (EdgeId e : triangle_edges(m, TriId(f))) ++e_off[e.idx + 1];
   }
   std::partial_sum(e_off.begin(), e_off.end(), e_off.begin());
   std::vector<TriId> e_tris(e_off[ne]);
@@ -225,7 +223,7 @@ ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params) {
     std::vector<std::uint32_t> fill(e_off.begin(), e_off.end() - 1);
     for (std::size_t f = 0; f < nf; ++f)
       if (is_mf[f])
-        for (EdgeId e : tri_e[f]) e_tris[fill[e.idx]++] = TriId(f);
+        for (EdgeId e : triangle_edges(m, TriId(f))) e_tris[fill[e.idx]++] = TriId(f);
   }
 
   // ---- model faces: union across edges with exactly two model-face triangles
@@ -273,12 +271,17 @@ ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params) {
     max_edge_tag = std::max(max_edge_tag, soup.edges[i].tag);
   }
   std::vector<char> is_me(ne, 0);
-  std::vector<std::vector<std::int32_t>> edge_faces(ne);  // distinct model face tags
-  for (std::size_t e = 0; e < ne; ++e) {
-    auto& tags = edge_faces[e];
+  // Distinct model-face tags around an edge, computed on demand (a stored
+  // vector per edge would dominate classify's memory peak).
+  auto edge_faces = [&](std::size_t e) {
+    std::vector<std::int32_t> tags;
     for (std::uint32_t k = e_off[e]; k < e_off[e + 1]; ++k) tags.push_back(tri_class[e_tris[k].idx].tag);
     std::sort(tags.begin(), tags.end());
     tags.erase(std::unique(tags.begin(), tags.end()), tags.end());
+    return tags;
+  };
+  for (std::size_t e = 0; e < ne; ++e) {
+    const std::vector<std::int32_t> tags = e_off[e + 1] > e_off[e] ? edge_faces(e) : std::vector<std::int32_t>{};
     const std::uint32_t n = e_off[e + 1] - e_off[e];
     bool topo = n > 0 && (n != 2 || tags.size() >= 2);
     if (topo && soup.full_classification && !soup.edges.empty() && edge_given[e] == kNoTag) {
@@ -293,7 +296,7 @@ ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params) {
   for (std::size_t e = 0; e < ne; ++e)
     if (is_me[e])
       for (VertexId v : m.edge(EdgeId(e))) v_me[v.idx].push_back(EdgeId(e));
-  auto edge_key = [&](EdgeId e) { return std::make_pair(edge_given[e.idx], edge_faces[e.idx]); };
+  auto edge_key = [&](EdgeId e) { return std::make_pair(edge_given[e.idx], edge_faces(e.idx)); };
 
   // ---- model vertices
   std::vector<std::int32_t> corner_given(nv, kNoTag);
@@ -402,7 +405,8 @@ ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params) {
     auto& me = edges[edge_class[e].tag];
     me.dim = 1;
     me.tag = edge_class[e].tag;
-    me.bounds.insert(me.bounds.end(), edge_faces[e].begin(), edge_faces[e].end());
+    const std::vector<std::int32_t> tags = edge_faces(e);
+    me.bounds.insert(me.bounds.end(), tags.begin(), tags.end());
   }
   for (std::size_t v = 0; v < nv; ++v) {
     if (!is_mv[v]) continue;

@@ -316,11 +316,32 @@ PolyMesh build_dual(const ClassifiedTetMesh& m, const DualParams& params, DualSt
   st = DualStats{};
   PolyMesh pm;
   auto t0 = Clock::now();
+  // Reserve the dual's arrays up front: growing them by doubling would hold up
+  // to three copies at the memory peak. Points are counted exactly; faces and
+  // their point lists are bounded by the edge rings (sum of ring sizes = 6 per
+  // tet) plus the model-face triangle centres, midpoints and model vertices
+  // they add (each triangle centre in <= 6 fan faces and 3 caps).
+  {
+    std::size_t nmf = 0, nme = 0, nmv = 0;
+    for (std::size_t f = 0; f < m.num_triangles(); ++f) nmf += m.on_model_face(TriId(f));
+    for (std::size_t e = 0; e < m.num_edges(); ++e) nme += m.edge_class(EdgeId(e)).dim == 1;
+    for (std::size_t v = 0; v < m.num_vertices(); ++v) nmv += m.vertex_class(VertexId(v)).dim == 0;
+    const std::size_t np = m.num_tets() + nmf + nme + nmv;
+    pm.points.reserve(np);
+    pm.point_class.reserve(np);
+    const std::size_t nf = m.num_edges() + 2 * nmf + nme;
+    pm.face_offsets.reserve(nf + 1);
+    pm.face_owner.reserve(nf);
+    pm.face_neighbour.reserve(nf);
+    pm.face_kind.reserve(nf);
+    pm.face_tag.reserve(nf);
+    pm.face_points.reserve(6 * m.num_tets() + 9 * nmf + 4 * nme + nmv);
+  }
   DualPoints d = make_points(m, pm, st);
   st.seconds_points = since(t0);
 
   t0 = Clock::now();
-  const VertexSides sides = compute_sides(m);
+  VertexSides sides = compute_sides(m);
   make_edge_faces(m, sides, d, pm);
   make_caps(m, sides, d, pm, st);
   st.seconds_faces = since(t0);
@@ -332,8 +353,13 @@ PolyMesh build_dual(const ClassifiedTetMesh& m, const DualParams& params, DualSt
     pairs = exact_coincidences(m, d, pm);
     collapse = params.collapse_tolerance * mean_edge_length(m);
   }
-  pm.cell_material = sides.cell_material;
-  pm.cell_primal = sides.cell_vertex;
+  pm.cell_material = std::move(sides.cell_material);
+  pm.cell_primal = std::move(sides.cell_vertex);
+  const std::size_t num_cells = sides.num_cells;
+  // The per-corner sides and the point maps are no longer needed: free them
+  // before the cleanup, which runs at the memory peak.
+  sides = VertexSides{};
+  d = DualPoints{};
   CleanupResult cr = cleanup_dual(pm, pairs, collapse);
   st.merged_points = cr.merged_points;
   st.collapsed_points = cr.collapsed_points;
@@ -341,7 +367,7 @@ PolyMesh build_dual(const ClassifiedTetMesh& m, const DualParams& params, DualSt
   st.seconds_cleanup = since(t0);
 
   t0 = Clock::now();
-  assemble_cells(pm, sides.num_cells);
+  assemble_cells(pm, num_cells);
   st.seconds_cells = since(t0);
   return pm;
 }
