@@ -159,28 +159,13 @@ struct Reader {
 
 TetSoup read_msh2(TextCursor& cur, bool binary) {
   Reader r{cur, binary, {}, {}};
-  bool have_nodes = false, have_elements = false;
-  while (!cur.at_end()) {
-    std::string_view name = cur.token("section name");
-    if (name.size() < 2 || name[0] != '$') cur.fail("expected a section such as $Nodes, got '" + quoted(name) + "'");
-    name.remove_prefix(1);
-    if (name == "Nodes") {
-      if (have_nodes) cur.fail("second $Nodes section");
-      r.nodes();
-      have_nodes = true;
-    } else if (name == "Elements") {
-      if (!have_nodes) cur.fail("$Elements before $Nodes");
-      if (have_elements) cur.fail("second $Elements section");
-      r.elements();
-      have_elements = true;
-    } else if (name == "PhysicalNames") {
-      r.physical_names();
-    } else {
-      skip_section(cur, name);
-    }
-  }
-  if (!have_nodes) throw InputError(cur.source(), "end of file", "missing $Nodes section");
-  if (!have_elements) throw InputError(cur.source(), "end of file", "missing $Elements section");
+  read_sections(cur, [&](std::string_view name) {
+    if (name == "Nodes") r.nodes();
+    else if (name == "Elements") r.elements();
+    else if (name == "PhysicalNames") r.physical_names();
+    else return false;
+    return true;
+  });
   return std::move(r.soup);
 }
 

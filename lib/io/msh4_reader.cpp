@@ -223,31 +223,23 @@ struct Reader {
 
 TetSoup read_msh4(TextCursor& cur, bool binary) {
   Reader r{cur, binary, {}, {}, {}, false};
-  bool have_nodes = false, have_elements = false;
-  while (!cur.at_end()) {
-    std::string_view name = cur.token("section name");
-    if (name.size() < 2 || name[0] != '$') cur.fail("expected a section such as $Nodes, got '" + quoted(name) + "'");
-    name.remove_prefix(1);
+  bool have_nodes = false;
+  read_sections(cur, [&](std::string_view name) {
     if (name == "Entities") {
       if (have_nodes) cur.fail("$Entities after $Nodes");
       r.entities_section();
     } else if (name == "Nodes") {
-      if (have_nodes) cur.fail("second $Nodes section");
       r.nodes_section();
       have_nodes = true;
     } else if (name == "Elements") {
-      if (!have_nodes) cur.fail("$Elements before $Nodes");
-      if (have_elements) cur.fail("second $Elements section");
       r.elements_section();
-      have_elements = true;
     } else if (name == "PhysicalNames") {
       r.physical_names();
     } else {
-      skip_section(cur, name);
+      return false;
     }
-  }
-  if (!have_nodes) throw InputError(cur.source(), "end of file", "missing $Nodes section");
-  if (!have_elements) throw InputError(cur.source(), "end of file", "missing $Elements section");
+    return true;
+  });
   r.soup.full_classification = r.have_entities && !r.soup.triangles.empty();
   return std::move(r.soup);
 }

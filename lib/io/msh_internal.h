@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <string_view>
 
+#include "core/error.h"
 #include "io/text_cursor.h"
 #include "mesh/tet_soup.h"
 
@@ -21,6 +22,31 @@ Use element_use(const TextCursor& cur, std::int64_t type);
 void skip_section(TextCursor& cur, std::string_view name);
 // Reads the token that must close section `name`.
 void expect_end(TextCursor& cur, std::string_view name);
+
+// The section loop both versions share: for every "$Name" until the end of
+// the file, calls read(name), which returns false for a section it does not
+// know (skipped up to $EndName); $Nodes must come once and before the one
+// $Elements, and both must be present.
+template <class ReadSection>
+void read_sections(TextCursor& cur, ReadSection&& read) {
+  bool have_nodes = false, have_elements = false;
+  while (!cur.at_end()) {
+    std::string_view name = cur.token("section name");
+    if (name.size() < 2 || name[0] != '$') cur.fail("expected a section such as $Nodes, got '" + quoted(name) + "'");
+    name.remove_prefix(1);
+    if (name == "Nodes") {
+      if (have_nodes) cur.fail("second $Nodes section");
+      have_nodes = true;
+    } else if (name == "Elements") {
+      if (!have_nodes) cur.fail("$Elements before $Nodes");
+      if (have_elements) cur.fail("second $Elements section");
+      have_elements = true;
+    }
+    if (!read(name)) skip_section(cur, name);
+  }
+  if (!have_nodes) throw InputError(cur.source(), "end of file", "missing $Nodes section");
+  if (!have_elements) throw InputError(cur.source(), "end of file", "missing $Elements section");
+}
 
 // Section loops after $MeshFormat (the cursor stands after $EndMeshFormat).
 TetSoup read_msh2(TextCursor& cur, bool binary);
