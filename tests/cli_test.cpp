@@ -93,6 +93,11 @@ TEST(Cli, GenerateInfoConvertCheckAreDeterministic) {
                   " --format foam --optimize none").code, 0);
   }
   EXPECT_EQ(slurp(d / "f0.vtu"), slurp(d / "f1.vtu"));
+  // With the default optimisation (parallel coloured sweeps) too.
+  for (const char* name : {"o0.vtu", "o1.vtu"})
+    ASSERT_EQ(run("convert " + (d / "f.msh").string() + " -o " + (d / name).string()).code, 0);
+  EXPECT_EQ(slurp(d / "o0.vtu"), slurp(d / "o1.vtu"));
+  EXPECT_NE(slurp(d / "o0.vtu"), slurp(d / "f0.vtu"));  // the optimiser did move points
   for (const char* f : {"points", "faces", "owner", "neighbour", "boundary", "cellZones", "faceZones"})
     EXPECT_EQ(slurp(d / "case0/constant/polyMesh" / f), slurp(d / "case1/constant/polyMesh" / f)) << f;
   CmdResult chk = run("check " + (d / "f0.vtu").string() + " --json");
