@@ -9,6 +9,9 @@
 
 #include <chrono>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include "dual/central_points.h"
 #include "dual/cleanup.h"
 #include "dual/sides.h"
@@ -40,14 +43,17 @@ DualPoints make_points(const ClassifiedTetMesh& m, PolyMesh& pm, DualStats& st) 
   pm.points.resize(nt);
   pm.point_class.resize(nt);
   d.tet_well_centred.assign(nt, 0);
-  for (std::size_t t = 0; t < nt; ++t) {
-    const auto& v = m.tet(TetId(t));
-    CentralPoint c = tet_central_point(m.point(v[0]), m.point(v[1]), m.point(v[2]), m.point(v[3]));
-    pm.points[t] = c.p;
-    pm.point_class[t] = ModelRef{3, m.region(TetId(t))};
-    d.tet_well_centred[t] = c.well_centred;
-    (c.well_centred ? st.well_centred_tets : st.clamped_tets)++;
-  }
+  // Independent per tet: parallel, and the same result for any thread count.
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nt, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t t = r.begin(); t < r.end(); ++t) {
+      const auto& v = m.tet(TetId(t));
+      CentralPoint c = tet_central_point(m.point(v[0]), m.point(v[1]), m.point(v[2]), m.point(v[3]));
+      pm.points[t] = c.p;
+      pm.point_class[t] = ModelRef{3, m.region(TetId(t))};
+      d.tet_well_centred[t] = c.well_centred;
+    }
+  });
+  for (char w : d.tet_well_centred) (w ? st.well_centred_tets : st.clamped_tets)++;
   d.tri_point.assign(m.num_triangles(), PointId::invalid());
   d.tri_well_centred.assign(m.num_triangles(), 0);
   for (std::size_t f = 0; f < m.num_triangles(); ++f) {
