@@ -7,7 +7,7 @@ PKGS=(build-essential cmake ccache pkg-config
       libceres-dev libgtest-dev libgmock-dev libbenchmark-dev
       gmsh libgmsh-dev
       clang-14 libclang-rt-14-dev
-      python3 python3-vtk9 python3-matplotlib python3-numpy xvfb xauth time
+      python3 python3-vtk9 python3-matplotlib python3-numpy python3-meshio xvfb xauth time
       openfoam)
 missing=()
 for p in "${PKGS[@]}"; do
