@@ -15,6 +15,24 @@ inline void cross3(const double u[3], const double v[3], double out[3]) {
 }
 inline double dot3(const double u[3], const double v[3]) { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; }
 
+// r(V) = 1/D(V) and its first two derivatives in V, where D = V + W,
+// W = sqrt(V^2 + delta^2), delta = V0 s, s = 1/(1 + c e^{V/V0}):
+//   delta' = -s(1-s), delta'' = s(1-s)(1-2s)/V0,
+//   D' = (D + delta delta')/W, D'' = ((delta - V delta')^2 + delta delta'' W^2)/W^3
+// (both written without the cancellation of 1 + (V + delta delta')/W for V << 0).
+inline void inverse_regularised_volume(double V, double delta, double D, double V0, double& r0, double& r1,
+                                       double& r2) {
+  const double W = std::sqrt(V * V + delta * delta);
+  const double s = delta / V0;
+  const double d1 = -s * (1.0 - s), d2 = s * (1.0 - s) * (1.0 - 2.0 * s) / V0;
+  const double D1 = (D + delta * d1) / W;
+  const double q = delta - V * d1;
+  const double D2 = (q * q + delta * d2 * W * W) / (W * W * W);
+  r0 = 1.0 / D;
+  r1 = -D1 * r0 * r0;
+  r2 = (2.0 * D1 * D1 - D * D2) * r0 * r0 * r0;
+}
+
 }  // namespace
 
 double corner_kappa_mod_add_point_derivatives(const double e1[3], const double e2[3], const double e3[3],
@@ -57,17 +75,8 @@ double corner_kappa_mod_add_point_derivatives(const double e1[3], const double e
     gV[i] = a1 * c23[i] + a2 * c31[i] + a3 * c12[i];
     gS[i] = inv2S * (L * gA[i] + A * gL[i]);  // S = sqrt(A L)
   }
-  // 1/D(V): D = V + W, W = sqrt(V^2 + delta^2), delta = V0 s, s = 1/(1 + c e^{V/V0}):
-  //   delta' = -s(1-s), delta'' = s(1-s)(1-2s)/V0,
-  //   D' = (D + delta delta')/W, D'' = ((delta - V delta')^2 + delta delta'' W^2)/W^3
-  // (both written without the cancellation of 1 + (V + delta delta')/W for V << 0).
-  const double W = std::sqrt(V * V + delta * delta);
-  const double s = delta / V0;
-  const double d1 = -s * (1.0 - s), d2 = s * (1.0 - s) * (1.0 - 2.0 * s) / V0;
-  const double D1 = (D + delta * d1) / W;
-  const double q = delta - V * d1;
-  const double D2 = (q * q + delta * d2 * W * W) / (W * W * W);
-  const double r0 = 1.0 / D, r1 = -D1 * r0 * r0, r2 = (2.0 * D1 * D1 - D * D2) * r0 * r0 * r0;
+  double r0, r1, r2;
+  inverse_regularised_volume(V, delta, D, V0, r0, r1, r2);
   // kappa_mod = 2 S r(V).
   for (int i = 0; i < 3; ++i) g[i] += 2.0 * r0 * gS[i] + 2.0 * S * r1 * gV[i];
   const double k0 = 2.0 * r0, k1 = 2.0 * r1, k2 = 2.0 * S * r2, iS = 1.0 / S;
@@ -106,13 +115,8 @@ double corner_kappa_mod_add_e3_derivatives(const double e1[3], const double e2[3
     dA[i] = 2.0 * (n12 * e3[i] - d13 * e1[i] - d23 * e2[i]);
     dS[i] = inv2S * (L * dA[i] + A * 2.0 * e3[i]);
   }
-  const double W = std::sqrt(V * V + delta * delta);
-  const double s = delta / V0;
-  const double d1 = -s * (1.0 - s), d2 = s * (1.0 - s) * (1.0 - 2.0 * s) / V0;
-  const double D1 = (D + delta * d1) / W;
-  const double q = delta - V * d1;
-  const double D2 = (q * q + delta * d2 * W * W) / (W * W * W);
-  const double r0 = 1.0 / D, r1 = -D1 * r0 * r0, r2 = (2.0 * D1 * D1 - D * D2) * r0 * r0 * r0;
+  double r0, r1, r2;
+  inverse_regularised_volume(V, delta, D, V0, r0, r1, r2);
   for (int i = 0; i < 3; ++i) {
     gk[i] = 2.0 * r0 * dS[i] + 2.0 * S * r1 * c12[i];
     g[i] += a3 * gk[i];
