@@ -19,7 +19,7 @@ std::vector<TaggedTriangle> box_triangles(const TetSoup& s) {
     if (m.triangle_tet(TriId(f), 1).valid()) continue;
     const auto& v = m.triangle(TriId(f));
     TaggedTriangle t;
-    for (int i = 0; i < 3; ++i) t.v[i] = v[i].idx;
+    for (int i = 0; i < 3; ++i) t.v[i] = m.input_vertex(v[i]);  // the soup's numbering
     t.tag = m.triangle_class(TriId(f)).tag;
     out.push_back(t);
   }

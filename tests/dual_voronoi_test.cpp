@@ -49,7 +49,7 @@ TEST(DualVoronoi, WellCentredInteriorFacesArePerpendicularBisectors) {
       ASSERT_TRUE(by_points.count(key)) << "no dual face for interior edge " << e;
       const FaceId f = by_points[key];
       // Owner is the side of edge(e)[0], and the loop turns right-handedly about a->b.
-      EXPECT_EQ(pm.cell_primal[pm.face_owner[f.idx].idx], m.edge(EdgeId(e))[0]);
+      EXPECT_EQ(pm.cell_primal[pm.face_owner[f.idx].idx], VertexId(m.input_vertex(m.edge(EdgeId(e))[0])));
       const double len = norm(b - a);
       Vec3 normal{};
       auto loop = pm.face(f);

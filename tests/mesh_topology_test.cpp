@@ -88,3 +88,42 @@ TEST(MeshTopology, AdjacencyInvolutionRingsAndStars) {
     if (HasFailure()) break;
   }
 }
+
+// classify() renumbers vertices and tets spatially (lib/classify/spatial_order.h):
+// the maps back to the input are bijections and carry the same geometry and
+// regions, and the new tet order follows the smallest vertex.
+TEST(MeshTopology, SpatialRenumberingMapsBackToTheInput) {
+  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+    RandomMeshParams p;
+    p.seed = seed;
+    p.num_points = 200;
+    p.regions = 2;
+    const TetSoup s = random_classified_mesh(p);
+    const ClassifiedTetMesh m = classify(s);
+    ASSERT_EQ(m.num_tets(), s.tets.size());
+    std::set<std::uint32_t> seen_v, seen_t;
+    for (std::size_t v = 0; v < m.num_vertices(); ++v) {
+      const std::uint32_t in = m.input_vertex(VertexId(v));
+      ASSERT_LT(in, s.points.size());
+      EXPECT_TRUE(seen_v.insert(in).second);
+      EXPECT_EQ(m.point(VertexId(v)), s.points[in]);
+    }
+    std::uint32_t prev_low = 0;
+    bool identity = true;
+    for (std::size_t t = 0; t < m.num_tets(); ++t) {
+      const std::uint32_t in = m.input_tet(TetId(t));
+      ASSERT_LT(in, s.tets.size());
+      EXPECT_TRUE(seen_t.insert(in).second);
+      identity = identity && in == t;
+      EXPECT_EQ(m.region(TetId(t)), s.tet_region[in]);
+      std::uint32_t low = UINT32_MAX;
+      for (int i = 0; i < 4; ++i) {
+        EXPECT_EQ(m.input_vertex(m.tet(TetId(t))[i]), s.tets[in][i]) << "vertex order kept";
+        low = std::min(low, m.tet(TetId(t))[i].idx);
+      }
+      EXPECT_GE(low, prev_low) << "tets sorted by smallest vertex";
+      prev_low = low;
+    }
+    EXPECT_FALSE(identity) << "seed " << seed << ": Delaunay output is not already in Morton order";
+  }
+}

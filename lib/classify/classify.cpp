@@ -15,6 +15,7 @@
 #include <set>
 #include <unordered_map>
 
+#include "classify/spatial_order.h"
 #include "classify/union_find.h"
 #include "core/error.h"
 #include "predicates/predicates.h"
@@ -33,10 +34,14 @@ std::string vlist(std::initializer_list<std::uint32_t> v) {
 }
 
 // Validate indices and coordinates; drop unused vertices (remap everything).
+// The validated input in spatial order (lib/classify/spatial_order.h).
 struct Compacted {
   std::vector<Point3> points;
   std::vector<std::array<VertexId, 4>> tets;
-  std::vector<std::uint32_t> remap;  // soup index -> compact index (or -1)
+  std::vector<std::int32_t> regions;
+  std::vector<std::uint32_t> remap;         // soup vertex index -> vertex id (or -1)
+  std::vector<std::uint32_t> input_vertex;  // vertex id -> soup vertex index
+  std::vector<std::uint32_t> input_tet;     // tet id -> soup tet index
 };
 
 Compacted validate_and_compact(const TetSoup& s) {
@@ -60,29 +65,50 @@ Compacted validate_and_compact(const TetSoup& s) {
       used[tv[i]] = 1;
     }
   }
-  Compacted c;
-  c.remap.assign(nv, std::uint32_t(-1));
-  for (std::size_t v = 0; v < nv; ++v) {
-    if (!used[v]) continue;
-    if (!is_finite(s.points[v]))
+  for (std::size_t v = 0; v < nv; ++v)
+    if (used[v] && !is_finite(s.points[v]))
       throw InputError(s.source, "vertex " + std::to_string(v + 1), "coordinate is not finite");
-    c.remap[v] = std::uint32_t(c.points.size());
-    c.points.push_back(s.points[v]);
-  }
-  c.tets.reserve(s.tets.size());
   for (std::size_t t = 0; t < s.tets.size(); ++t) {
     const auto& tv = s.tets[t];
-    std::array<VertexId, 4> r{VertexId(c.remap[tv[0]]), VertexId(c.remap[tv[1]]),
-                              VertexId(c.remap[tv[2]]), VertexId(c.remap[tv[3]])};
     // EXACT: the orientation of every input tet.
-    Sign o = orient3d(c.points[r[0].idx], c.points[r[1].idx], c.points[r[2].idx], c.points[r[3].idx]);
+    Sign o = orient3d(s.points[tv[0]], s.points[tv[1]], s.points[tv[2]], s.points[tv[3]]);
     if (o == Sign::Negative)
       throw InputError(s.source, "tet " + std::to_string(t + 1),
                        "tet " + std::to_string(t + 1) + " is inverted (negative orientation)");
     if (o == Sign::Zero)
       throw InputError(s.source, "tet " + std::to_string(t + 1),
                        "tet " + std::to_string(t + 1) + " has zero volume (degenerate)");
-    c.tets.push_back(r);
+  }
+  // Spatial order: used vertices along the Morton curve, tets by smallest vertex.
+  Compacted c;
+  std::vector<std::uint32_t> used_list;
+  std::vector<Point3> used_points;
+  for (std::size_t v = 0; v < nv; ++v)
+    if (used[v]) { used_list.push_back(std::uint32_t(v)); used_points.push_back(s.points[v]); }
+  used = std::vector<char>();
+  const std::vector<std::uint32_t> vorder = morton_order(used_points);
+  used_points = std::vector<Point3>();
+  c.remap.assign(nv, std::uint32_t(-1));
+  c.input_vertex.resize(vorder.size());
+  c.points.resize(vorder.size());
+  for (std::size_t k = 0; k < vorder.size(); ++k) {
+    const std::uint32_t v = used_list[vorder[k]];
+    c.input_vertex[k] = v;
+    c.remap[v] = std::uint32_t(k);
+    c.points[k] = s.points[v];
+  }
+  std::vector<std::array<VertexId, 4>> tets(s.tets.size());
+  for (std::size_t t = 0; t < s.tets.size(); ++t) {
+    const auto& tv = s.tets[t];
+    tets[t] = {VertexId(c.remap[tv[0]]), VertexId(c.remap[tv[1]]), VertexId(c.remap[tv[2]]),
+               VertexId(c.remap[tv[3]])};
+  }
+  c.input_tet = order_by_smallest_vertex(tets, c.points.size());
+  c.tets.resize(tets.size());
+  c.regions.resize(tets.size());
+  for (std::size_t k = 0; k < tets.size(); ++k) {
+    c.tets[k] = tets[c.input_tet[k]];
+    c.regions[k] = s.tet_region[c.input_tet[k]];
   }
   return c;
 }
@@ -154,8 +180,9 @@ ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params) {
   if (!(params.feature_angle_deg > 0 && params.feature_angle_deg <= 180))
     throw UsageError("--feature-angle must be in (0, 180] degrees");
   Compacted c = validate_and_compact(soup);
-  ClassifiedTetMesh m = TetMeshBuilder::build_topology(soup.source, std::move(c.points),
-                                                       std::move(c.tets), soup.tet_region);
+  ClassifiedTetMesh m = TetMeshBuilder::build_topology(soup.source, std::move(c.points), std::move(c.tets),
+                                                       std::move(c.regions), std::move(c.input_vertex),
+                                                       std::move(c.input_tet));
   const std::size_t nf = m.num_triangles(), ne = m.num_edges(), nv = m.num_vertices();
   auto remap = [&](std::uint32_t v, const char* what, std::size_t i) {
     if (v >= c.remap.size() || c.remap[v] == std::uint32_t(-1))
@@ -200,7 +227,7 @@ ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params) {
     if (!topo && tri_given[f] == kNoTag) continue;
     if (topo && soup.full_classification && tri_given[f] == kNoTag) {
       const auto& v = m.triangle(TriId(f));
-      throw InputError(soup.source, "triangle " + vlist({v[0].idx, v[1].idx, v[2].idx}),
+      throw InputError(soup.source, "triangle " + vlist({m.input_vertex(v[0]), m.input_vertex(v[1]), m.input_vertex(v[2])}),
                        std::string("contradiction: the triangle lies ") +
                            (t1.valid() ? "between regions " + std::to_string(r0) + " and " + std::to_string(r1)
                                        : "on the external boundary") +
@@ -286,7 +313,7 @@ ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params) {
     bool topo = n > 0 && (n != 2 || tags.size() >= 2);
     if (topo && soup.full_classification && !soup.edges.empty() && edge_given[e] == kNoTag) {
       const auto& v = m.edge(EdgeId(e));
-      throw InputError(soup.source, "edge " + vlist({v[0].idx, v[1].idx}),
+      throw InputError(soup.source, "edge " + vlist({m.input_vertex(v[0]), m.input_vertex(v[1])}),
                        "contradiction: model faces meet at this edge but the file classifies it on no model edge");
     }
     is_me[e] = topo || edge_given[e] != kNoTag;

@@ -60,15 +60,26 @@ Json poly_summary(const PolyMesh& pm, const std::vector<CellVerdict>& verdicts, 
     std::size_t by_dim[4] = {0, 0, 0, 0};
     Json where = Json::array();
     std::size_t listed = 0;
+    // cell_primal is in the input's numbering: map it back to the mesh's ids.
+    std::vector<std::uint32_t> mesh_id;
+    for (std::size_t v = 0; v < primal->num_vertices(); ++v) {
+      const std::uint32_t in = primal->input_vertex(VertexId(v));
+      if (in >= mesh_id.size()) mesh_id.resize(in + 1, VertexId::kInvalid);
+      mesh_id[in] = std::uint32_t(v);
+    }
     for (std::size_t c = 0; c < verdicts.size(); ++c) {
       if (verdicts[c].valid) continue;
-      const VertexId v = pm.cell_primal[c];
+      const std::uint32_t in = pm.cell_primal[c].idx;
+      if (in >= mesh_id.size() || mesh_id[in] == VertexId::kInvalid)
+        throw InputError(primal->source(), "cell " + std::to_string(c + 1),
+                         "the dual cell's primal vertex " + std::to_string(in + 1) + " is not in this tet mesh");
+      const VertexId v(mesh_id[in]);
       const ModelRef cls = primal->vertex_class(v);
       ++by_dim[cls.dim];
       if (listed++ < kWhereLimit) {
         Json o = Json::object();
         o.set("cell", c);
-        o.set("primal_vertex", v.idx);
+        o.set("primal_vertex", in);
         o.set("class", names[cls.dim]);
         o.set("tag", cls.tag);
         const Point3& p = primal->point(v);

@@ -360,7 +360,10 @@ PolyMesh build_dual(const ClassifiedTetMesh& m, const DualParams& params, DualSt
     collapse = params.collapse_tolerance * mean_edge_length(m);
   }
   pm.cell_material = std::move(sides.cell_material);
+  // Cells name their primal vertex in the input's numbering (what users and
+  // files see; ClassifiedTetMesh::input_vertex).
   pm.cell_primal = std::move(sides.cell_vertex);
+  for (VertexId& v : pm.cell_primal) v = VertexId(m.input_vertex(v));
   const std::size_t num_cells = sides.num_cells;
   // The per-corner sides and the point maps are no longer needed: free them
   // before the cleanup, which runs at the memory peak.

@@ -43,7 +43,6 @@ inline void ring_others(int ia, int ib, int& ic, int& id) {
   id = kRing.d[ia][ib];
 }
 
-std::string tet_place(std::size_t t) { return "tet " + std::to_string(t + 1); }
 }  // namespace
 
 const ModelEntity* ModelTopology::find(int dim, std::int32_t tag) const {
@@ -136,13 +135,27 @@ double ClassifiedTetMesh::tet_volume(TetId t) const {
 
 ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector<Point3> points,
                                                  std::vector<std::array<VertexId, 4>> tets,
-                                                 std::vector<std::int32_t> regions) {
+                                                 std::vector<std::int32_t> regions,
+                                                 std::vector<std::uint32_t> input_vertex,
+                                                 std::vector<std::uint32_t> input_tet) {
   ClassifiedTetMesh m;
   m.source_ = std::move(source);
   m.points_ = std::move(points);
   m.tets_ = std::move(tets);
   m.tet_region_ = std::move(regions);
   const std::size_t nv = m.points_.size(), nt = m.tets_.size();
+  m.input_vertex_ = std::move(input_vertex);
+  m.input_tet_ = std::move(input_tet);
+  if (m.input_vertex_.empty()) {
+    m.input_vertex_.resize(nv);
+    std::iota(m.input_vertex_.begin(), m.input_vertex_.end(), 0u);
+  }
+  if (m.input_tet_.empty()) {
+    m.input_tet_.resize(nt);
+    std::iota(m.input_tet_.begin(), m.input_tet_.end(), 0u);
+  }
+  auto tet_place = [&](std::size_t t) { return "tet " + std::to_string(m.input_tet_[t] + 1); };
+  auto vnum = [&](std::size_t v) { return std::to_string(m.input_vertex_[v] + 1); };
 
   // Vertex stars (CSR, tets in increasing order).
   m.vstar_off_.assign(nv + 1, 0);
@@ -200,13 +213,13 @@ ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector
           const std::uint32_t s2 = (it + 1)->code / 4, si = (it + 1)->code % 4;
           if (m.tets_[s2][si] == m.tets_[t][ti])
             throw InputError(m.source_, tet_place(s2),
-                             "duplicated tet (same four vertices as tet " + std::to_string(t + 1) + ")");
+                             "duplicated tet (same four vertices as " + tet_place(t) + ")");
           if (n > 2)
             throw InputError(m.source_, tet_place(t),
-                             "non-conformal mesh: triangle (" + std::to_string(v + 1) + ", " +
-                                 std::to_string(it->mid + 1) + ", " + std::to_string(it->max + 1) +
-                                 ") is shared by more than two tets (" + std::to_string(t + 1) + ", " +
-                                 std::to_string(s2 + 1) + ", " + std::to_string((it + 2)->code / 4 + 1) + ")");
+                             "non-conformal mesh: triangle (" + vnum(v) + ", " + vnum(it->mid) + ", " +
+                                 vnum(it->max) + ") is shared by more than two tets (" +
+                                 std::to_string(m.input_tet_[t] + 1) + ", " + std::to_string(m.input_tet_[s2] + 1) +
+                                 ", " + std::to_string(m.input_tet_[(it + 2)->code / 4] + 1) + ")");
           m.tet_adj_[4 * t + ti] = TetId(s2);
           m.tet_adj_[4 * s2 + si] = TetId(t);
         }

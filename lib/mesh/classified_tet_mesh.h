@@ -80,6 +80,12 @@ class ClassifiedTetMesh {
   // Edge id of the edge (a,b), or invalid if a and b share no tet.
   EdgeId find_edge(VertexId a, VertexId b) const;
 
+  // --- numbering of the input (classify() renumbers spatially, lib/classify/spatial_order.h)
+  // The input file's 0-based index of vertex v / tet t.
+  std::uint32_t input_vertex(VertexId v) const { return input_vertex_[v.idx]; }
+  std::uint32_t input_tet(TetId t) const { return input_tet_[t.idx]; }
+  const std::vector<std::uint32_t>& input_vertices() const { return input_vertex_; }
+
   // --- classification
   ModelRef vertex_class(VertexId v) const { return vertex_class_[v.idx]; }
   ModelRef edge_class(EdgeId e) const { return edge_class_[e.idx]; }
@@ -96,6 +102,7 @@ class ClassifiedTetMesh {
   std::vector<Point3> points_;
   std::vector<std::array<VertexId, 4>> tets_;
   std::vector<std::int32_t> tet_region_;
+  std::vector<std::uint32_t> input_vertex_, input_tet_;
   std::vector<TetId> tet_adj_;   // 4 per tet
   std::vector<TriId> tet_tri_;   // 4 per tet
   std::vector<EdgeId> tet_edge_; // 6 per tet
@@ -114,10 +121,13 @@ class ClassifiedTetMesh {
 class TetMeshBuilder {
  public:
   // Throws InputError (naming `source` and the tet) on non-conformity: a
-  // triangle shared by more than two tets.
+  // triangle shared by more than two tets. input_vertex/input_tet map the ids
+  // to the input's numbering (for error messages and outputs); empty = identity.
   static ClassifiedTetMesh build_topology(std::string source, std::vector<Point3> points,
                                           std::vector<std::array<VertexId, 4>> tets,
-                                          std::vector<std::int32_t> regions);
+                                          std::vector<std::int32_t> regions,
+                                          std::vector<std::uint32_t> input_vertex = {},
+                                          std::vector<std::uint32_t> input_tet = {});
   static std::vector<ModelRef>& vertex_class(ClassifiedTetMesh& m) { return m.vertex_class_; }
   static std::vector<ModelRef>& edge_class(ClassifiedTetMesh& m) { return m.edge_class_; }
   static std::vector<ModelRef>& triangle_class(ClassifiedTetMesh& m) { return m.tri_class_; }

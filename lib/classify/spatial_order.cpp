@@ -1,0 +1,60 @@
+#include "classify/spatial_order.h"
+
+#include <algorithm>
+#include <numeric>
+
+namespace polydual {
+
+namespace {
+// Spreads the low 21 bits of x to every third bit.
+std::uint64_t spread3(std::uint64_t x) {
+  x &= 0x1fffffULL;
+  x = (x | x << 32) & 0x1f00000000ffffULL;
+  x = (x | x << 16) & 0x1f0000ff0000ffULL;
+  x = (x | x << 8) & 0x100f00f00f00f00fULL;
+  x = (x | x << 4) & 0x10c30c30c30c30c3ULL;
+  x = (x | x << 2) & 0x1249249249249249ULL;
+  return x;
+}
+}  // namespace
+
+std::vector<std::uint32_t> morton_order(const std::vector<Point3>& points) {
+  const std::size_t n = points.size();
+  std::vector<std::uint32_t> order(n);
+  std::iota(order.begin(), order.end(), 0u);
+  if (n < 2) return order;
+  Point3 lo = points[0], hi = points[0];
+  for (const Point3& p : points) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+  }
+  static constexpr double kCells = double((1u << 21) - 1);
+  auto scale = [&](double l, double h) { return h > l ? kCells / (h - l) : 0.0; };
+  const double sx = scale(lo.x, hi.x), sy = scale(lo.y, hi.y), sz = scale(lo.z, hi.z);
+  // Key in the high bits, index in the low ones: one sort of 64+32-bit pairs.
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> keys(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Point3& p = points[i];
+    auto q = [](double v, double l, double s) { return std::uint64_t(std::min(kCells, (v - l) * s)); };
+    keys[i] = {spread3(q(p.x, lo.x, sx)) | spread3(q(p.y, lo.y, sy)) << 1 | spread3(q(p.z, lo.z, sz)) << 2,
+               std::uint32_t(i)};
+  }
+  std::sort(keys.begin(), keys.end());
+  for (std::size_t i = 0; i < n; ++i) order[i] = keys[i].second;
+  return order;
+}
+
+std::vector<std::uint32_t> order_by_smallest_vertex(const std::vector<std::array<VertexId, 4>>& tets,
+                                                    std::size_t num_vertices) {
+  std::vector<std::uint32_t> off(num_vertices + 1, 0);
+  auto lowest = [](const std::array<VertexId, 4>& t) {
+    return std::min(std::min(t[0].idx, t[1].idx), std::min(t[2].idx, t[3].idx));
+  };
+  for (const auto& t : tets) ++off[lowest(t) + 1];
+  std::partial_sum(off.begin(), off.end(), off.begin());
+  std::vector<std::uint32_t> order(tets.size());
+  for (std::size_t t = 0; t < tets.size(); ++t) order[off[lowest(tets[t])]++] = std::uint32_t(t);
+  return order;
+}
+
+}  // namespace polydual
