@@ -65,6 +65,27 @@ PredicateCounters& predicate_counters() {
 }
 
 Sign orient3d(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
+  // Semi-static filter (Shewchuk's orient3d stage A, errboundA = (7 + 56 eps) eps
+  // times the permanent), evaluated on differences to d: det[a-d, b-d, c-d] is
+  // -det[b-a, c-a, d-a]. Undecided (or tiny/non-finite magnitudes, where
+  // underflow could spoil the bound): CGAL's filtered exact predicate.
+  const double adx = a.x - d.x, bdx = b.x - d.x, cdx = c.x - d.x;
+  const double ady = a.y - d.y, bdy = b.y - d.y, cdy = c.y - d.y;
+  const double adz = a.z - d.z, bdz = b.z - d.z, cdz = c.z - d.z;
+  const double bdxcdy = bdx * cdy, cdxbdy = cdx * bdy;
+  const double cdxady = cdx * ady, adxcdy = adx * cdy;
+  const double adxbdy = adx * bdy, bdxady = bdx * ady;
+  const double det = adz * (bdxcdy - cdxbdy) + bdz * (cdxady - adxcdy) + cdz * (adxbdy - bdxady);
+  const double perm = (std::fabs(bdxcdy) + std::fabs(cdxbdy)) * std::fabs(adz) +
+                      (std::fabs(cdxady) + std::fabs(adxcdy)) * std::fabs(bdz) +
+                      (std::fabs(adxbdy) + std::fabs(bdxady)) * std::fabs(cdz);
+  constexpr double eps = DBL_EPSILON / 2;
+  constexpr double kBoundA = (7.0 + 56.0 * eps) * eps;
+  if (perm > 1e-250 && perm < 1e250) {
+    const double bound = kBoundA * perm;
+    if (det > bound) return Sign::Negative;
+    if (det < -bound) return Sign::Positive;
+  }
   // CGAL's orientation(p,q,r,s) is the sign of det[q-p, r-p, s-p] (filtered, exact).
   return to_sign(static_cast<int>(CGAL::orientation(kp(a), kp(b), kp(c), kp(d))));
 }
@@ -77,7 +98,6 @@ Sign insphere(const Point3& a, const Point3& b, const Point3& c, const Point3& d
 void circumcenter_barycentric_signs(const Point3& a, const Point3& b, const Point3& c,
                                     const Point3& d, Sign out[4]) {
   auto& cnt = predicate_counters();
-  cnt.circ_calls.fetch_add(1, std::memory_order_relaxed);
   // Even permutations of (a,b,c,d) keep D > 0 and bring each vertex to slot 1.
   const Point3* p[4] = {&a, &b, &c, &d};
   static constexpr int perm[4][4] = {{1, 0, 3, 2}, {0, 1, 2, 3}, {0, 3, 1, 2}, {0, 2, 3, 1}};

@@ -54,8 +54,8 @@ Sign decomposition_tet_sign_inexact(const Point3& a, const Point3& b, std::span<
 // how many predicates they evaluated (no contended write on the hot path).
 struct PredicateCounters {
   std::atomic<std::uint64_t> star_exact{0};
-  std::atomic<std::uint64_t> circ_calls{0}, circ_exact{0};
-  void reset() { star_exact = circ_calls = circ_exact = 0; }
+  std::atomic<std::uint64_t> circ_exact{0};
+  void reset() { star_exact = circ_exact = 0; }
 };
 PredicateCounters& predicate_counters();
 
