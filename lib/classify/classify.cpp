@@ -9,6 +9,7 @@
 #include "classify/classify.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <map>
 #include <numeric>
@@ -44,7 +45,9 @@ struct Compacted {
   std::vector<std::uint32_t> input_tet;     // tet id -> soup tet index
 };
 
-Compacted validate_and_compact(const TetSoup& s) {
+Compacted validate_and_compact(const TetSoup& s, ClassifyStats& st) {
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
   const std::size_t nv = s.points.size();
   if (s.tets.empty()) throw InputError(s.source, "", "mesh has no tetrahedra");
   if (s.tet_region.size() != s.tets.size())
@@ -79,6 +82,8 @@ Compacted validate_and_compact(const TetSoup& s) {
       throw InputError(s.source, "tet " + std::to_string(t + 1),
                        "tet " + std::to_string(t + 1) + " has zero volume (degenerate)");
   }
+  st.seconds_validate = std::chrono::duration<double>(Clock::now() - t0).count();
+  const auto t1 = Clock::now();
   // Spatial order: used vertices along the Morton curve, tets by smallest vertex.
   Compacted c;
   std::vector<std::uint32_t> used_list;
@@ -110,6 +115,7 @@ Compacted validate_and_compact(const TetSoup& s) {
     c.tets[k] = tets[c.input_tet[k]];
     c.regions[k] = s.tet_region[c.input_tet[k]];
   }
+  st.seconds_order = std::chrono::duration<double>(Clock::now() - t1).count();
   return c;
 }
 
@@ -176,13 +182,21 @@ std::vector<std::int32_t> assign_tags(const std::vector<std::int32_t>& given_tag
 
 }  // namespace
 
-ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params) {
+ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params, ClassifyStats* stats) {
   if (!(params.feature_angle_deg > 0 && params.feature_angle_deg <= 180))
     throw UsageError("--feature-angle must be in (0, 180] degrees");
-  Compacted c = validate_and_compact(soup);
+  ClassifyStats local;
+  ClassifyStats& st = stats ? *stats : local;
+  using Clock = std::chrono::steady_clock;
+  auto since = [](Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); };
+  auto t0 = Clock::now();
+  Compacted c = validate_and_compact(soup, st);
+  t0 = Clock::now();
   ClassifiedTetMesh m = TetMeshBuilder::build_topology(soup.source, std::move(c.points), std::move(c.tets),
                                                        std::move(c.regions), std::move(c.input_vertex),
                                                        std::move(c.input_tet));
+  st.seconds_topology = since(t0);
+  t0 = Clock::now();
   const std::size_t nf = m.num_triangles(), ne = m.num_edges(), nv = m.num_vertices();
   auto remap = [&](std::uint32_t v, const char* what, std::size_t i) {
     if (v >= c.remap.size() || c.remap[v] == std::uint32_t(-1))
@@ -454,6 +468,7 @@ ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params) {
   finish(edges, topo.entities[1]);
   finish(faces, topo.entities[2]);
   finish(regions, topo.entities[3]);
+  st.seconds_classification = since(t0);
   return m;
 }
 

@@ -17,10 +17,19 @@ struct ClassifyParams {
   double feature_angle_deg = 30.0;
 };
 
+// Wall-clock seconds of classify()'s stages (for benchmarks and --json).
+struct ClassifyStats {
+  double seconds_validate = 0;        // indices, finite coordinates, exact orientation
+  double seconds_order = 0;           // spatial renumbering
+  double seconds_topology = 0;        // adjacency, triangles, edges, stars
+  double seconds_classification = 0;  // model faces, edges, vertices
+};
+
 // Validates on load (SPEC §2): finite coordinates, indices in range, every tet
 // positively oriented by the exact predicate (inverted or zero-volume tets are
 // errors naming the tet), conformity, unused vertices. Throws InputError naming
 // soup.source and the place.
-ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params = {});
+ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params = {},
+                           ClassifyStats* stats = nullptr);
 
 }  // namespace polydual

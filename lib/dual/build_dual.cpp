@@ -309,6 +309,7 @@ Json DualStats::to_json() const {
   j.set("slit_faces", slit_faces);
   Json sec = Json::object();
   sec.set("points", seconds_points);
+  sec.set("sides", seconds_sides);
   sec.set("faces", seconds_faces);
   sec.set("cleanup", seconds_cleanup);
   sec.set("cells", seconds_cells);
@@ -348,6 +349,8 @@ PolyMesh build_dual(const ClassifiedTetMesh& m, const DualParams& params, DualSt
 
   t0 = Clock::now();
   VertexSides sides = compute_sides(m);
+  st.seconds_sides = since(t0);
+  t0 = Clock::now();
   make_edge_faces(m, sides, d, pm);
   make_caps(m, sides, d, pm, st);
   st.seconds_faces = since(t0);

@@ -26,7 +26,7 @@ struct DualStats {
   std::size_t collapsed_points = 0;   // by the short-edge collapse
   std::size_t dropped_faces = 0;      // faces that degenerated below 3 points
   std::size_t slit_faces = 0;         // owner == neighbour (fracture tips)
-  double seconds_points = 0, seconds_faces = 0, seconds_cleanup = 0, seconds_cells = 0;
+  double seconds_points = 0, seconds_sides = 0, seconds_faces = 0, seconds_cleanup = 0, seconds_cells = 0;
   Json to_json() const;
 };
 

@@ -144,6 +144,8 @@ ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector
   m.tets_ = std::move(tets);
   m.tet_region_ = std::move(regions);
   const std::size_t nv = m.points_.size(), nt = m.tets_.size();
+  if (nt >= (std::size_t(1) << 30))
+    throw InputError(m.source_, "", "more than 2^30 tets (" + std::to_string(nt) + ") are not supported");
   m.input_vertex_ = std::move(input_vertex);
   m.input_tet_ = std::move(input_tet);
   if (m.input_vertex_.empty()) {
@@ -154,6 +156,7 @@ ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector
     m.input_tet_.resize(nt);
     std::iota(m.input_tet_.begin(), m.input_tet_.end(), 0u);
   }
+  constexpr std::uint32_t kNoNeighbour = ClassifiedTetMesh::kNoNeighbour;
   auto tet_place = [&](std::size_t t) { return "tet " + std::to_string(m.input_tet_[t] + 1); };
   auto vnum = [&](std::size_t v) { return std::to_string(m.input_vertex_[v] + 1); };
 
@@ -169,111 +172,131 @@ ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector
       for (VertexId v : m.tets_[t]) m.vstar_[fill[v.idx]++] = TetId(t);
   }
 
-  // Face adjacency: bucket the 4nt tet faces by their smallest vertex, sort
-  // each bucket by the other two, and pair equal keys (two at most).
-  m.tet_adj_.assign(4 * nt, TetId::invalid());
+  // Face adjacency, one vertex v at a time: the tet faces whose smallest vertex
+  // is v all lie in v's star. Sort them by their two other vertices (packed in
+  // one 64-bit key; a stable insertion sort keeps equal keys in (tet, face)
+  // order) and pair equal keys (two at most). Only the star is touched.
+  m.tet_adj_.assign(4 * nt, kNoNeighbour);
   m.tet_tri_.assign(4 * nt, TriId::invalid());
+  std::size_t num_tris = 0;
   {
-    struct FaceRec { std::uint32_t mid, max, code; };  // code = 4t + i
-    std::vector<std::uint32_t> off(nv + 1, 0);
-    auto sorted3 = [&](std::size_t t, int i, std::uint32_t& lo, std::uint32_t& mid, std::uint32_t& hi) {
-      const auto& tv = m.tets_[t];
-      std::uint32_t a = tv[kTetFace[i][0]].idx, b = tv[kTetFace[i][1]].idx, c = tv[kTetFace[i][2]].idx;
-      if (a > b) std::swap(a, b);
-      if (b > c) std::swap(b, c);
-      if (a > b) std::swap(a, b);
-      lo = a; mid = b; hi = c;
-    };
-    for (std::size_t t = 0; t < nt; ++t)
-      for (int i = 0; i < 4; ++i) {
-        std::uint32_t lo, mid, hi;
-        sorted3(t, i, lo, mid, hi);
-        ++off[lo + 1];
-      }
-    std::partial_sum(off.begin(), off.end(), off.begin());
-    std::vector<FaceRec> recs(4 * nt);
-    std::vector<std::uint32_t> fill(off.begin(), off.end() - 1);
-    for (std::size_t t = 0; t < nt; ++t)
-      for (int i = 0; i < 4; ++i) {
-        std::uint32_t lo, mid, hi;
-        sorted3(t, i, lo, mid, hi);
-        recs[fill[lo]++] = {mid, hi, std::uint32_t(4 * t + i)};
-      }
+    struct FaceRec { std::uint64_t key; std::uint32_t code; };  // key = mid << 32 | max, code = 4t + i
+    std::vector<FaceRec> recs;
     for (std::size_t v = 0; v < nv; ++v) {
-      auto first = recs.begin() + off[v], last = recs.begin() + off[v + 1];
-      std::sort(first, last, [](const FaceRec& x, const FaceRec& y) {
-        return x.mid != y.mid ? x.mid < y.mid : (x.max != y.max ? x.max < y.max : x.code < y.code);
-      });
-      for (auto it = first; it != last;) {
+      recs.clear();
+      for (std::uint32_t k = m.vstar_off_[v]; k < m.vstar_off_[v + 1]; ++k) {
+        const std::uint32_t t = m.vstar_[k].idx;
+        const auto& tv = m.tets_[t];
+        for (int i = 0; i < 4; ++i) {
+          if (tv[i].idx == v) continue;  // the face opposite v does not contain it
+          std::uint32_t a = tv[kTetFace[i][0]].idx, b = tv[kTetFace[i][1]].idx, c = tv[kTetFace[i][2]].idx;
+          if (a < v || b < v || c < v) continue;  // v is not this face's smallest vertex
+          if (a > b) std::swap(a, b);
+          if (b > c) std::swap(b, c);
+          if (a > b) std::swap(a, b);
+          recs.push_back({std::uint64_t(b) << 32 | c, 4 * t + std::uint32_t(i)});  // a == v
+        }
+      }
+      if (recs.size() > 48) {
+        std::stable_sort(recs.begin(), recs.end(), [](const FaceRec& x, const FaceRec& y) { return x.key < y.key; });
+      } else {
+        for (std::size_t i = 1; i < recs.size(); ++i) {
+          const FaceRec r = recs[i];
+          std::size_t j = i;
+          for (; j > 0 && r.key < recs[j - 1].key; --j) recs[j] = recs[j - 1];
+          recs[j] = r;
+        }
+      }
+      for (auto it = recs.begin(); it != recs.end();) {
         auto jt = it + 1;
-        while (jt != last && jt->mid == it->mid && jt->max == it->max) ++jt;
+        while (jt != recs.end() && jt->key == it->key) ++jt;
         const std::size_t n = std::size_t(jt - it);
-        const std::uint32_t t = it->code / 4, ti = it->code % 4;
+        ++num_tris;
         if (n >= 2) {
+          const std::uint32_t t = it->code / 4, ti = it->code % 4;
           const std::uint32_t s2 = (it + 1)->code / 4, si = (it + 1)->code % 4;
           if (m.tets_[s2][si] == m.tets_[t][ti])
             throw InputError(m.source_, tet_place(s2),
                              "duplicated tet (same four vertices as " + tet_place(t) + ")");
           if (n > 2)
             throw InputError(m.source_, tet_place(t),
-                             "non-conformal mesh: triangle (" + vnum(v) + ", " + vnum(it->mid) + ", " +
-                                 vnum(it->max) + ") is shared by more than two tets (" +
+                             "non-conformal mesh: triangle (" + vnum(v) + ", " + vnum(it->key >> 32) + ", " +
+                                 vnum(it->key & 0xffffffffu) + ") is shared by more than two tets (" +
                                  std::to_string(m.input_tet_[t] + 1) + ", " + std::to_string(m.input_tet_[s2] + 1) +
                                  ", " + std::to_string(m.input_tet_[(it + 2)->code / 4] + 1) + ")");
-          m.tet_adj_[4 * t + ti] = TetId(s2);
-          m.tet_adj_[4 * s2 + si] = TetId(t);
+          m.tet_adj_[it->code] = (it + 1)->code;
+          m.tet_adj_[(it + 1)->code] = it->code;
         }
         it = jt;
       }
     }
   }
   // Triangles, numbered in the order (tet, local face) of their first tet.
+  m.tri_verts_.reserve(num_tris);
+  m.tri_tets_.reserve(num_tris);
   for (std::size_t t = 0; t < nt; ++t) {
     for (int i = 0; i < 4; ++i) {
       if (m.tet_tri_[4 * t + i].valid()) continue;
       TriId f(m.tri_verts_.size());
       const auto& tv = m.tets_[t];
       m.tri_verts_.push_back({tv[kTetFace[i][0]], tv[kTetFace[i][1]], tv[kTetFace[i][2]]});
-      TetId s = m.tet_adj_[4 * t + i];
-      m.tri_tets_.push_back({TetId(t), s});
+      const std::uint32_t across = m.tet_adj_[4 * t + i];
+      m.tri_tets_.push_back({TetId(t), across == kNoNeighbour ? TetId::invalid() : TetId(across / 4)});
       m.tet_tri_[4 * t + i] = f;
-      if (s.valid()) {
-        for (int j = 0; j < 4; ++j)
-          if (m.tet_adj_[4 * s.idx + j] == TetId(t)) m.tet_tri_[4 * s.idx + j] = f;
-      }
+      if (across != kNoNeighbour) m.tet_tri_[across] = f;
     }
   }
-  // Edges: numbered by (lower vertex, higher vertex). Bucket the 6nt tet edges
-  // by their lower vertex and sort each bucket by (higher vertex, 6t+k).
+  // Edges, numbered by (lower vertex, higher vertex): for each vertex v, the
+  // distinct higher neighbours w of its star (a handful, found with a marker
+  // per vertex), sorted; each tet edge (v, w) then takes the id of its w. An
+  // edge's stored tet is the first tet of v's star that has it.
   {
-    struct EdgeRec { std::uint32_t hi, code; };
-    std::vector<std::uint32_t> off(nv + 1, 0);
-    for (std::size_t t = 0; t < nt; ++t)
-      for (int k = 0; k < 6; ++k)
-        ++off[std::min(m.tets_[t][kTetEdge[k][0]].idx, m.tets_[t][kTetEdge[k][1]].idx) + 1];
-    std::partial_sum(off.begin(), off.end(), off.begin());
-    std::vector<EdgeRec> recs(6 * nt);
-    std::vector<std::uint32_t> fill(off.begin(), off.end() - 1);
-    for (std::size_t t = 0; t < nt; ++t)
+    // kEdgeOf[i][j]: local edge joining local vertices i and j.
+    static constexpr auto kEdgeOf = [] {
+      std::array<std::array<std::int8_t, 4>, 4> e{};
       for (int k = 0; k < 6; ++k) {
-        std::uint32_t a = m.tets_[t][kTetEdge[k][0]].idx, b = m.tets_[t][kTetEdge[k][1]].idx;
-        if (a > b) std::swap(a, b);
-        recs[fill[a]++] = {b, std::uint32_t(6 * t + k)};
+        e[kTetEdge[k][0]][kTetEdge[k][1]] = std::int8_t(k);
+        e[kTetEdge[k][1]][kTetEdge[k][0]] = std::int8_t(k);
       }
+      return e;
+    }();
+    std::vector<std::uint32_t> mark(nv, std::uint32_t(-1)), slot(nv, 0);
+    struct Nb { std::uint32_t w, tet; };
+    std::vector<Nb> nbs;
     m.tet_edge_.resize(6 * nt);
-    m.edge_verts_.reserve(6 * nt / 4);
-    m.edge_tet_.reserve(6 * nt / 4);
+    // Euler's relation for a ball: E = V + T + (boundary triangles)/2 - 1.
+    const std::size_t ne_guess = nv + nt + (2 * num_tris - 4 * nt) / 2 + 16;
+    m.edge_verts_.reserve(ne_guess);
+    m.edge_tet_.reserve(ne_guess);
     for (std::size_t v = 0; v < nv; ++v) {
-      auto first = recs.begin() + off[v], last = recs.begin() + off[v + 1];
-      std::sort(first, last, [](const EdgeRec& x, const EdgeRec& y) {
-        return x.hi != y.hi ? x.hi < y.hi : x.code < y.code;
-      });
-      for (auto it = first; it != last; ++it) {
-        if (it == first || it->hi != (it - 1)->hi) {
-          m.edge_verts_.push_back({VertexId(v), VertexId(it->hi)});
-          m.edge_tet_.push_back(TetId(it->code / 6));
+      nbs.clear();
+      const std::uint32_t vv = std::uint32_t(v);
+      for (std::uint32_t k = m.vstar_off_[v]; k < m.vstar_off_[v + 1]; ++k) {
+        const std::uint32_t t = m.vstar_[k].idx;
+        for (VertexId x : m.tets_[t]) {
+          if (x.idx <= vv || mark[x.idx] == vv) continue;
+          mark[x.idx] = vv;
+          nbs.push_back({x.idx, t});
         }
-        m.tet_edge_[it->code] = EdgeId(m.edge_verts_.size() - 1);
+      }
+      for (std::size_t i = 1; i < nbs.size(); ++i) {
+        const Nb r = nbs[i];
+        std::size_t j = i;
+        for (; j > 0 && r.w < nbs[j - 1].w; --j) nbs[j] = nbs[j - 1];
+        nbs[j] = r;
+      }
+      const std::uint32_t base = std::uint32_t(m.edge_verts_.size());
+      for (std::size_t r = 0; r < nbs.size(); ++r) {
+        m.edge_verts_.push_back({VertexId(v), VertexId(nbs[r].w)});
+        m.edge_tet_.push_back(TetId(nbs[r].tet));
+        slot[nbs[r].w] = base + std::uint32_t(r);
+      }
+      for (std::uint32_t k = m.vstar_off_[v]; k < m.vstar_off_[v + 1]; ++k) {
+        const std::uint32_t t = m.vstar_[k].idx;
+        const auto& tv = m.tets_[t];
+        const int iv = tv[0].idx == vv ? 0 : tv[1].idx == vv ? 1 : tv[2].idx == vv ? 2 : 3;
+        for (int j = 0; j < 4; ++j)
+          if (tv[j].idx > vv) m.tet_edge_[6 * t + kEdgeOf[iv][j]] = EdgeId(slot[tv[j].idx]);
       }
     }
   }

@@ -52,7 +52,15 @@ class ClassifiedTetMesh {
   const std::array<VertexId, 4>& tet(TetId t) const { return tets_[t.idx]; }
   std::int32_t region(TetId t) const { return tet_region_[t.idx]; }
   // Neighbour across local face i (invalid on the boundary).
-  TetId tet_neighbor(TetId t, int i) const { return tet_adj_[4 * t.idx + i]; }
+  TetId tet_neighbor(TetId t, int i) const {
+    const std::uint32_t c = tet_adj_[4 * t.idx + i];
+    return c == kNoNeighbour ? TetId::invalid() : TetId(c >> 2);
+  }
+  // The neighbour's local index of the shared face (-1 on the boundary).
+  int tet_neighbor_face(TetId t, int i) const {
+    const std::uint32_t c = tet_adj_[4 * t.idx + i];
+    return c == kNoNeighbour ? -1 : int(c & 3u);
+  }
   TriId tet_triangle(TetId t, int i) const { return tet_tri_[4 * t.idx + i]; }
   EdgeId tet_edge(TetId t, int k) const { return tet_edge_[6 * t.idx + k]; }
   // The triangle's vertices, oriented so its right-hand normal points out of
@@ -103,7 +111,8 @@ class ClassifiedTetMesh {
   std::vector<std::array<VertexId, 4>> tets_;
   std::vector<std::int32_t> tet_region_;
   std::vector<std::uint32_t> input_vertex_, input_tet_;
-  std::vector<TetId> tet_adj_;   // 4 per tet
+  static constexpr std::uint32_t kNoNeighbour = 0xffffffffu;
+  std::vector<std::uint32_t> tet_adj_;  // 4 per tet: 4 * neighbour + its local face, or kNoNeighbour
   std::vector<TriId> tet_tri_;   // 4 per tet
   std::vector<EdgeId> tet_edge_; // 6 per tet
   std::vector<std::array<VertexId, 3>> tri_verts_;
