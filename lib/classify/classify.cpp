@@ -400,11 +400,8 @@ ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params, Cl
     } else if (e_off[e + 1] > e_off[e]) {
       edge_class[e] = ModelRef{2, tri_class[e_tris[e_off[e]].idx].tag};
     } else {
-      TetId t = m.vertex_tets(m.edge(EdgeId(e))[0]).front();
-      // any tet of the edge: an edge with no model-face triangle lies in one region
-      for (TetId s : m.vertex_tets(m.edge(EdgeId(e))[0]))
-        if (m.local_index(s, m.edge(EdgeId(e))[1]) >= 0) { t = s; break; }
-      edge_class[e] = ModelRef{3, m.region(t)};
+      // an edge with no model-face triangle lies in one region: any of its tets
+      edge_class[e] = ModelRef{3, m.region(m.edge_tet(EdgeId(e)))};
     }
   }
   std::vector<std::int32_t> vgiven;
@@ -425,9 +422,11 @@ ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params, Cl
   ModelTopology& topo = TetMeshBuilder::model(m);
   std::map<std::int32_t, ModelEntity> regions, faces, edges, verts;
   for (std::size_t t = 0; t < m.num_tets(); ++t) {
-    auto& r = regions[m.region(TetId(t))];
+    const std::int32_t tag = m.region(TetId(t));
+    if (t > 0 && tag == m.region(TetId(t - 1))) continue;  // runs of one region: skip the map
+    auto& r = regions[tag];
     r.dim = 3;
-    r.tag = m.region(TetId(t));
+    r.tag = tag;
   }
   for (std::size_t f = 0; f < nf; ++f) {
     if (!is_mf[f]) continue;

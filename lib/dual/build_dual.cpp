@@ -102,7 +102,8 @@ void make_edge_faces(const ClassifiedTetMesh& m, const VertexSides& sides, const
       loop.clear();
       const TriId start = tris[s], end = tris[t > n ? t - n : t];
       if (bounded) loop.push_back(d.tri_point[start.idx]);
-      for (std::size_t k = s; k < t; ++k) loop.push_back(PointId(ring[k % n].idx));
+      for (std::size_t k = s; k < std::min(t, n); ++k) loop.push_back(PointId(ring[k].idx));
+      for (std::size_t k = n; k < t; ++k) loop.push_back(PointId(ring[k - n].idx));  // wrapped
       // One cut on a closed ring (start == end, a fracture tip edge): the fan
       // goes all the way round and closes on the start triangle's centre.
       if (bounded && end != start) {

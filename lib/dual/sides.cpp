@@ -1,38 +1,57 @@
 #include "dual/sides.h"
 
-#include "classify/union_find.h"
+#include <algorithm>
 
 namespace polydual {
 
 VertexSides compute_sides(const ClassifiedTetMesh& m) {
-  const std::size_t nt = m.num_tets();
-  // Corners (t, i) -> 4t+i; join corners of the same primal vertex across
-  // triangles that are not on a model face.
-  UnionFind uf(4 * nt);
-  for (std::size_t t = 0; t < nt; ++t) {
-    const auto& tv = m.tet(TetId(t));
-    for (int j = 0; j < 4; ++j) {
-      TetId s = m.tet_neighbor(TetId(t), j);
-      if (!s.valid() || s.idx < t || m.on_model_face(m.tet_triangle(TetId(t), j))) continue;
-      for (int i = 0; i < 4; ++i) {
-        if (i == j) continue;
-        uf.unite(4 * t + i, 4 * s.idx + m.local_index(s, tv[i]));
-      }
-    }
-  }
+  const std::size_t nt = m.num_tets(), nv = m.num_vertices();
   VertexSides out;
   out.cell_of.assign(4 * nt, CellId::invalid());
-  std::vector<CellId> root_cell(4 * nt, CellId::invalid());
-  for (std::size_t v = 0; v < m.num_vertices(); ++v) {
-    for (TetId t : m.vertex_tets(VertexId(v))) {
-      const int i = m.local_index(t, VertexId(v));
-      const std::uint32_t r = uf.find(4 * t.idx + i);
-      if (!root_cell[r].valid()) {
-        root_cell[r] = CellId(out.num_cells++);
-        out.cell_vertex.push_back(VertexId(v));
-        out.cell_material.push_back(m.region(t));
+  out.cell_vertex.reserve(nv + nv / 4);
+  out.cell_material.reserve(nv + nv / 4);
+  // Per vertex v, a union-find over the positions of its star (sorted by tet):
+  // tets sharing a triangle through v that is not on a model face join.
+  std::vector<std::uint32_t> parent, root_cell;
+  auto find = [&](std::uint32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  for (std::size_t vi = 0; vi < nv; ++vi) {
+    const VertexId v(vi);
+    const std::span<const TetId> star = m.vertex_tets(v);
+    // A vertex on no model face (classified in a region) has a single side.
+    if (m.vertex_class(v).dim == 3) {
+      const CellId c(out.num_cells++);
+      out.cell_vertex.push_back(v);
+      out.cell_material.push_back(m.region(star.front()));
+      for (TetId t : star) out.cell_of[4 * t.idx + m.local_index(t, v)] = c;
+      continue;
+    }
+    const std::uint32_t n = std::uint32_t(star.size());
+    parent.resize(n);
+    for (std::uint32_t k = 0; k < n; ++k) parent[k] = k;
+    for (std::uint32_t k = 0; k < n; ++k) {
+      const TetId t = star[k];
+      const int iv = m.local_index(t, v);
+      for (int j = 0; j < 4; ++j) {
+        if (j == iv) continue;  // the face opposite v does not contain it
+        const TetId s = m.tet_neighbor(t, j);
+        if (!s.valid() || s.idx < t.idx || m.on_model_face(m.tet_triangle(t, j))) continue;
+        const std::uint32_t ks = std::uint32_t(std::lower_bound(star.begin(), star.end(), s) - star.begin());
+        const std::uint32_t a = find(k), b = find(ks);
+        if (a != b) parent[std::max(a, b)] = std::min(a, b);
       }
-      out.cell_of[4 * t.idx + i] = root_cell[r];
+    }
+    root_cell.assign(n, CellId::kInvalid);
+    for (std::uint32_t k = 0; k < n; ++k) {
+      const std::uint32_t r = find(k);
+      if (root_cell[r] == CellId::kInvalid) {
+        root_cell[r] = std::uint32_t(out.num_cells++);
+        out.cell_vertex.push_back(v);
+        out.cell_material.push_back(m.region(star[k]));
+      }
+      out.cell_of[4 * star[k].idx + m.local_index(star[k], v)] = CellId(root_cell[r]);
     }
   }
   return out;

@@ -52,13 +52,6 @@ const ModelEntity* ModelTopology::find(int dim, std::int32_t tag) const {
   return (it != v.end() && it->tag == tag) ? &*it : nullptr;
 }
 
-int ClassifiedTetMesh::local_index(TetId t, VertexId v) const {
-  const auto& tv = tets_[t.idx];
-  for (int i = 0; i < 4; ++i)
-    if (tv[i] == v) return i;
-  return -1;
-}
-
 EdgeId ClassifiedTetMesh::find_edge(VertexId a, VertexId b) const {
   for (TetId t : vertex_tets(a)) {
     int ia = local_index(t, a), ib = local_index(t, b);
@@ -105,17 +98,19 @@ void ClassifiedTetMesh::edge_ring(EdgeId e, std::vector<TetId>& tets, std::vecto
     ring_others(local_index(t, a), local_index(t, b), ic, id);
   }
   if (closed || !before_tet.valid()) return;
-  // Open ring with tets before the start: collect them backwards.
-  std::vector<TetId> back_tets;
-  std::vector<TriId> back_tris;
+  // Open ring with tets before the start: append them backwards, then move
+  // them to the front in ring order (no temporary vectors).
+  const std::size_t n_tets = tets.size(), n_tris = tris.size();
   for (TetId prev = before_tet; prev.valid();) {
     ring_others(local_index(prev, a), local_index(prev, b), ic, id);
-    back_tets.push_back(prev);
-    back_tris.push_back(tet_triangle(prev, id));
+    tets.push_back(prev);
+    tris.push_back(tet_triangle(prev, id));
     prev = tet_neighbor(prev, id);
   }
-  tets.insert(tets.begin(), back_tets.rbegin(), back_tets.rend());
-  tris.insert(tris.begin(), back_tris.rbegin(), back_tris.rend());
+  std::reverse(tets.begin() + std::ptrdiff_t(n_tets), tets.end());
+  std::rotate(tets.begin(), tets.begin() + std::ptrdiff_t(n_tets), tets.end());
+  std::reverse(tris.begin() + std::ptrdiff_t(n_tris), tris.end());
+  std::rotate(tris.begin(), tris.begin() + std::ptrdiff_t(n_tris), tris.end());
 }
 
 EdgeId ClassifiedTetMesh::triangle_edge(TriId f, VertexId a, VertexId b) const {

@@ -69,6 +69,8 @@ class ClassifiedTetMesh {
   // The one or two tets of a triangle (side 1 invalid on the boundary).
   TetId triangle_tet(TriId f, int side) const { return tri_tets_[f.idx][side]; }
   const std::array<VertexId, 2>& edge(EdgeId e) const { return edge_verts_[e.idx]; }
+  // One tet that has edge e.
+  TetId edge_tet(EdgeId e) const { return edge_tet_[e.idx]; }
   // Tets around a vertex (its star), in increasing tet order.
   std::span<const TetId> vertex_tets(VertexId v) const {
     return {vstar_.data() + vstar_off_[v.idx], vstar_.data() + vstar_off_[v.idx + 1]};
@@ -84,7 +86,10 @@ class ClassifiedTetMesh {
   // The edge joining two vertices of triangle f.
   EdgeId triangle_edge(TriId f, VertexId a, VertexId b) const;
   // Local index (0..3) of v in tet t, or -1.
-  int local_index(TetId t, VertexId v) const;
+  int local_index(TetId t, VertexId v) const {
+    const auto& tv = tets_[t.idx];
+    return tv[0] == v ? 0 : tv[1] == v ? 1 : tv[2] == v ? 2 : tv[3] == v ? 3 : -1;
+  }
   // Edge id of the edge (a,b), or invalid if a and b share no tet.
   EdgeId find_edge(VertexId a, VertexId b) const;
 
