@@ -12,7 +12,8 @@ struct CentralPoint {
 };
 
 // The circumcenter if the closed tet contains it (decided exactly), otherwise
-// the point where the segment centroid -> circumcenter leaves the tet. The
+// the point where the segment centroid -> circumcenter leaves the tet, less a
+// relative 2^-20 of the segment (strictly inside, well beyond rounding). The
 // clamped point is verified to lie in the closed tet with exact orientation
 // tests (pulled towards the centroid until it does). The circumcenter's
 // coordinates themselves are rounded doubles.
