@@ -3,6 +3,7 @@
 
 #include <CGAL/Gmpq.h>
 
+#include <cmath>
 #include <random>
 #include <vector>
 
@@ -45,6 +46,55 @@ TEST(Predicates, CircumcenterOfCornerTetIsOutside) {
   EXPECT_EQ(t[0], Sign::Zero);
   EXPECT_EQ(t[1], Sign::Positive);
   EXPECT_EQ(t[2], Sign::Positive);
+}
+
+// Each out[i] is the sign of the circumcentre's barycentric coordinate at
+// vertex i: checked against Gmpq (solve for the circumcentre, then the
+// volumes with vertex i replaced by it) on random and near-degenerate tets.
+TEST(Predicates, CircumcenterSignsMatchRationalBarycentrics) {
+  using Q = CGAL::Gmpq;
+  using P = std::array<Q, 3>;
+  auto det3 = [](const P& x, const P& y, const P& z) {
+    return x[0] * (y[1] * z[2] - y[2] * z[1]) - x[1] * (y[0] * z[2] - y[2] * z[0]) + x[2] * (y[0] * z[1] - y[1] * z[0]);
+  };
+  auto sub = [](const P& x, const P& y) { return P{x[0] - y[0], x[1] - y[1], x[2] - y[2]}; };
+  auto dotq = [](const P& x, const P& y) { return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]; };
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> U(-1, 1);
+  int checked = 0, negatives = 0, zeros = 0;
+  for (int iter = 0; iter < 3000; ++iter) {
+    Point3 v[4];
+    for (auto& x : v) x = {U(rng), U(rng), U(rng)};
+    if (iter % 3 == 0) v[3] = {v[0].x, v[1].y, v[2].z};  // mixed coordinates
+    if (iter % 5 == 0) for (auto& x : v) x = {std::round(4 * x.x) / 4, std::round(4 * x.y) / 4, std::round(4 * x.z) / 4};
+    P q[4];
+    for (int i = 0; i < 4; ++i) q[i] = {Q(v[i].x), Q(v[i].y), Q(v[i].z)};
+    const P u = sub(q[1], q[0]), w1 = sub(q[2], q[0]), w2 = sub(q[3], q[0]);
+    Q D = det3(u, w1, w2);
+    if (D == 0) continue;
+    if (D < 0) { std::swap(v[2], v[3]); std::swap(q[2], q[3]); }
+    const P e1 = sub(q[1], q[0]), e2 = sub(q[2], q[0]), e3 = sub(q[3], q[0]);
+    D = det3(e1, e2, e3);
+    // Circumcentre c - q0 = x with 2 e_k . x = |e_k|^2 (Cramer).
+    const P r{dotq(e1, e1) / 2, dotq(e2, e2) / 2, dotq(e3, e3) / 2};
+    const P c0{e1[0], e2[0], e3[0]}, c1{e1[1], e2[1], e3[1]}, c2{e1[2], e2[2], e3[2]};
+    const Q x0 = det3(r, c1, c2) / D, x1 = det3(c0, r, c2) / D, x2 = det3(c0, c1, r) / D;
+    const P cc{q[0][0] + x0, q[0][1] + x1, q[0][2] + x2};
+    Sign s[4];
+    circumcenter_barycentric_signs(v[0], v[1], v[2], v[3], s);
+    for (int i = 0; i < 4; ++i) {
+      P t[4] = {q[0], q[1], q[2], q[3]};
+      t[i] = cc;
+      const int expect = CGAL::sign(det3(sub(t[1], t[0]), sub(t[2], t[0]), sub(t[3], t[0])));
+      ASSERT_EQ(static_cast<int>(s[i]), expect) << "iteration " << iter << ", vertex " << i;
+      negatives += expect < 0;
+      zeros += expect == 0;
+    }
+    ++checked;
+  }
+  EXPECT_GT(checked, 2500);
+  EXPECT_GT(negatives, 1000);  // badly centred tets are common among random ones
+  EXPECT_GT(zeros, 0);         // and the lattice ones hit exact zeros
 }
 
 namespace {

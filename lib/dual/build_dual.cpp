@@ -244,17 +244,20 @@ void make_caps(const ClassifiedTetMesh& m, const VertexSides& sides, const DualP
 std::vector<std::pair<PointId, PointId>> exact_coincidences(const ClassifiedTetMesh& m, const DualPoints& d,
                                                              const PolyMesh& pm) {
   std::vector<std::pair<PointId, PointId>> pairs;
-  for (std::size_t f = 0; f < m.num_triangles(); ++f) {
-    const TriId fid(f);
-    const TetId t0 = m.triangle_tet(fid, 0), t1 = m.triangle_tet(fid, 1);
-    if (!t1.valid() || m.on_model_face(fid)) continue;
-    if (!d.tet_well_centred[t0.idx] || !d.tet_well_centred[t1.idx]) continue;
-    const auto& a = m.tet(t0);
-    VertexId far = VertexId::invalid();
-    for (VertexId x : m.tet(t1))
-      if (m.local_index(t0, x) < 0) far = x;
-    if (insphere(m.point(a[0]), m.point(a[1]), m.point(a[2]), m.point(a[3]), m.point(far)) == Sign::Zero)
-      pairs.emplace_back(PointId(t0.idx), PointId(t1.idx));
+  // Each interior triangle once, from its smaller tet t0; the neighbour's
+  // vertex across it is the one opposite the shared face.
+  for (std::size_t t = 0; t < m.num_tets(); ++t) {
+    const TetId t0(t);
+    if (!d.tet_well_centred[t]) continue;
+    for (int i = 0; i < 4; ++i) {
+      const TetId t1 = m.tet_neighbor(t0, i);
+      if (!t1.valid() || t1.idx < t || !d.tet_well_centred[t1.idx] || m.on_model_face(m.tet_triangle(t0, i)))
+        continue;
+      const auto& a = m.tet(t0);
+      const VertexId far = m.tet(t1)[m.tet_neighbor_face(t0, i)];
+      if (insphere(m.point(a[0]), m.point(a[1]), m.point(a[2]), m.point(a[3]), m.point(far)) == Sign::Zero)
+        pairs.emplace_back(PointId(t0.idx), PointId(t1.idx));
+    }
   }
   // Pairs of model-face triangles sharing an edge that is not a model edge
   // (such an edge has exactly two, of one model face).

@@ -167,40 +167,63 @@ ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector
       for (VertexId v : m.tets_[t]) m.vstar_[fill[v.idx]++] = TetId(t);
   }
 
-  // Face adjacency, one vertex v at a time: the tet faces whose smallest vertex
-  // is v all lie in v's star. Sort them by their two other vertices (packed in
-  // one 64-bit key; a stable insertion sort keeps equal keys in (tet, face)
-  // order) and pair equal keys (two at most). Only the star is touched.
+  // Face adjacency, one vertex v at a time. A tet face's smallest vertex is
+  // the tet's smallest vertex (three faces) or, for the face opposite it, the
+  // tet's second smallest: bucket the tets by both (counting sorts), collect
+  // the faces of bucket v keyed by their two other vertices (one 64-bit key),
+  // sort (stable insertion sort, the buckets are small) and pair equal keys
+  // (two at most).
   m.tet_adj_.assign(4 * nt, kNoNeighbour);
   m.tet_tri_.assign(4 * nt, TriId::invalid());
   std::size_t num_tris = 0;
   {
+    // low[t]: local index of t's smallest vertex; second[t]: of its second smallest.
+    std::vector<std::uint8_t> low(nt), second(nt);
+    std::vector<std::uint32_t> off1(nv + 1, 0), off2(nv + 1, 0);
+    for (std::size_t t = 0; t < nt; ++t) {
+      const auto& tv = m.tets_[t];
+      int l = 0;
+      for (int i = 1; i < 4; ++i) l = tv[i].idx < tv[l].idx ? i : l;
+      int s2 = l == 0 ? 1 : 0;
+      for (int i = 0; i < 4; ++i) s2 = (i != l && tv[i].idx < tv[s2].idx) ? i : s2;
+      low[t] = std::uint8_t(l);
+      second[t] = std::uint8_t(s2);
+      ++off1[tv[l].idx + 1];
+      ++off2[tv[s2].idx + 1];
+    }
+    std::partial_sum(off1.begin(), off1.end(), off1.begin());
+    std::partial_sum(off2.begin(), off2.end(), off2.begin());
+    std::vector<std::uint32_t> by_low(nt), by_second(nt);
+    {
+      std::vector<std::uint32_t> f1(off1.begin(), off1.end() - 1), f2(off2.begin(), off2.end() - 1);
+      for (std::size_t t = 0; t < nt; ++t) {
+        by_low[f1[m.tets_[t][low[t]].idx]++] = std::uint32_t(t);
+        by_second[f2[m.tets_[t][second[t]].idx]++] = std::uint32_t(t);
+      }
+    }
     struct FaceRec { std::uint64_t key; std::uint32_t code; };  // key = mid << 32 | max, code = 4t + i
     std::vector<FaceRec> recs;
+    auto push_face = [&](std::uint32_t t, int i) {
+      const auto& tv = m.tets_[t];
+      std::uint32_t a = tv[kTetFace[i][0]].idx, b = tv[kTetFace[i][1]].idx, c = tv[kTetFace[i][2]].idx;
+      if (a > b) std::swap(a, b);
+      if (b > c) std::swap(b, c);
+      if (a > b) std::swap(a, b);
+      recs.push_back({std::uint64_t(b) << 32 | c, 4 * t + std::uint32_t(i)});
+    };
     for (std::size_t v = 0; v < nv; ++v) {
       recs.clear();
-      for (std::uint32_t k = m.vstar_off_[v]; k < m.vstar_off_[v + 1]; ++k) {
-        const std::uint32_t t = m.vstar_[k].idx;
-        const auto& tv = m.tets_[t];
-        for (int i = 0; i < 4; ++i) {
-          if (tv[i].idx == v) continue;  // the face opposite v does not contain it
-          std::uint32_t a = tv[kTetFace[i][0]].idx, b = tv[kTetFace[i][1]].idx, c = tv[kTetFace[i][2]].idx;
-          if (a < v || b < v || c < v) continue;  // v is not this face's smallest vertex
-          if (a > b) std::swap(a, b);
-          if (b > c) std::swap(b, c);
-          if (a > b) std::swap(a, b);
-          recs.push_back({std::uint64_t(b) << 32 | c, 4 * t + std::uint32_t(i)});  // a == v
-        }
+      for (std::uint32_t k = off1[v]; k < off1[v + 1]; ++k) {
+        const std::uint32_t t = by_low[k];
+        for (int i = 0; i < 4; ++i)
+          if (i != low[t]) push_face(t, i);
       }
-      if (recs.size() > 48) {
-        std::stable_sort(recs.begin(), recs.end(), [](const FaceRec& x, const FaceRec& y) { return x.key < y.key; });
-      } else {
-        for (std::size_t i = 1; i < recs.size(); ++i) {
-          const FaceRec r = recs[i];
-          std::size_t j = i;
-          for (; j > 0 && r.key < recs[j - 1].key; --j) recs[j] = recs[j - 1];
-          recs[j] = r;
-        }
+      for (std::uint32_t k = off2[v]; k < off2[v + 1]; ++k) push_face(by_second[k], low[by_second[k]]);
+      for (std::size_t i = 1; i < recs.size(); ++i) {
+        const FaceRec r = recs[i];
+        std::size_t j = i;
+        for (; j > 0 && r.key < recs[j - 1].key; --j) recs[j] = recs[j - 1];
+        recs[j] = r;
       }
       for (auto it = recs.begin(); it != recs.end();) {
         auto jt = it + 1;
@@ -211,8 +234,8 @@ ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector
           const std::uint32_t t = it->code / 4, ti = it->code % 4;
           const std::uint32_t s2 = (it + 1)->code / 4, si = (it + 1)->code % 4;
           if (m.tets_[s2][si] == m.tets_[t][ti])
-            throw InputError(m.source_, tet_place(s2),
-                             "duplicated tet (same four vertices as " + tet_place(t) + ")");
+            throw InputError(m.source_, tet_place(std::max(t, s2)),
+                             "duplicated tet (same four vertices as " + tet_place(std::min(t, s2)) + ")");
           if (n > 2)
             throw InputError(m.source_, tet_place(t),
                              "non-conformal mesh: triangle (" + vnum(v) + ", " + vnum(it->key >> 32) + ", " +
@@ -241,13 +264,12 @@ ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector
       if (across != kNoNeighbour) m.tet_tri_[across] = f;
     }
   }
-  // Edges, numbered by (lower vertex, higher vertex): for each vertex v, the
-  // distinct higher neighbours w of its star (a handful, found with a marker
-  // per vertex), sorted; each tet edge (v, w) then takes the id of its w. An
-  // edge's stored tet is the first tet of v's star that has it.
+  // Edges, numbered in the order of their first (tet, local edge): an
+  // unnumbered tet edge gets the next id, and a walk around its ring through
+  // the face adjacency (both ways when the ring is open) gives every tet of
+  // the ring the same id. Each tet edge is visited once.
   {
-    // kEdgeOf[i][j]: local edge joining local vertices i and j.
-    static constexpr auto kEdgeOf = [] {
+    static constexpr auto kEdgeOf = [] {  // local edge joining local vertices i and j
       std::array<std::array<std::int8_t, 4>, 4> e{};
       for (int k = 0; k < 6; ++k) {
         e[kTetEdge[k][0]][kTetEdge[k][1]] = std::int8_t(k);
@@ -255,43 +277,35 @@ ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector
       }
       return e;
     }();
-    std::vector<std::uint32_t> mark(nv, std::uint32_t(-1)), slot(nv, 0);
-    struct Nb { std::uint32_t w, tet; };
-    std::vector<Nb> nbs;
-    m.tet_edge_.resize(6 * nt);
+    m.tet_edge_.assign(6 * nt, EdgeId::invalid());
     // Euler's relation for a ball: E = V + T + (boundary triangles)/2 - 1.
     const std::size_t ne_guess = nv + nt + (2 * num_tris - 4 * nt) / 2 + 16;
     m.edge_verts_.reserve(ne_guess);
     m.edge_tet_.reserve(ne_guess);
-    for (std::size_t v = 0; v < nv; ++v) {
-      nbs.clear();
-      const std::uint32_t vv = std::uint32_t(v);
-      for (std::uint32_t k = m.vstar_off_[v]; k < m.vstar_off_[v + 1]; ++k) {
-        const std::uint32_t t = m.vstar_[k].idx;
-        for (VertexId x : m.tets_[t]) {
-          if (x.idx <= vv || mark[x.idx] == vv) continue;
-          mark[x.idx] = vv;
-          nbs.push_back({x.idx, t});
+    for (std::size_t t = 0; t < nt; ++t) {
+      for (int k = 0; k < 6; ++k) {
+        if (m.tet_edge_[6 * t + k].valid()) continue;
+        const EdgeId e(m.edge_verts_.size());
+        const VertexId a = m.tets_[t][kTetEdge[k][0]], b = m.tets_[t][kTetEdge[k][1]];
+        m.edge_verts_.push_back({std::min(a, b), std::max(a, b)});
+        m.edge_tet_.push_back(TetId(t));
+        m.tet_edge_[6 * t + k] = e;
+        // Walk across the face after (side 0) or before (side 1) each tet.
+        for (int side = 0; side < 2; ++side) {
+          int ia = kTetEdge[k][0], ib = kTetEdge[k][1];
+          std::uint32_t cur = std::uint32_t(t);
+          for (;;) {
+            const int exit = side == 0 ? kRing.c[ia][ib] : kRing.d[ia][ib];
+            const std::uint32_t code = m.tet_adj_[4 * cur + exit];
+            if (code == kNoNeighbour) break;
+            cur = code >> 2;
+            if (cur == t) { side = 2; break; }  // closed ring: done both ways
+            const auto& sv = m.tets_[cur];
+            ia = sv[0] == a ? 0 : sv[1] == a ? 1 : sv[2] == a ? 2 : 3;
+            ib = sv[0] == b ? 0 : sv[1] == b ? 1 : sv[2] == b ? 2 : 3;
+            m.tet_edge_[6 * cur + kEdgeOf[ia][ib]] = e;
+          }
         }
-      }
-      for (std::size_t i = 1; i < nbs.size(); ++i) {
-        const Nb r = nbs[i];
-        std::size_t j = i;
-        for (; j > 0 && r.w < nbs[j - 1].w; --j) nbs[j] = nbs[j - 1];
-        nbs[j] = r;
-      }
-      const std::uint32_t base = std::uint32_t(m.edge_verts_.size());
-      for (std::size_t r = 0; r < nbs.size(); ++r) {
-        m.edge_verts_.push_back({VertexId(v), VertexId(nbs[r].w)});
-        m.edge_tet_.push_back(TetId(nbs[r].tet));
-        slot[nbs[r].w] = base + std::uint32_t(r);
-      }
-      for (std::uint32_t k = m.vstar_off_[v]; k < m.vstar_off_[v + 1]; ++k) {
-        const std::uint32_t t = m.vstar_[k].idx;
-        const auto& tv = m.tets_[t];
-        const int iv = tv[0].idx == vv ? 0 : tv[1].idx == vv ? 1 : tv[2].idx == vv ? 2 : 3;
-        for (int j = 0; j < 4; ++j)
-          if (tv[j].idx > vv) m.tet_edge_[6 * t + kEdgeOf[iv][j]] = EdgeId(slot[tv[j].idx]);
       }
     }
   }

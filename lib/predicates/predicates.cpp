@@ -98,32 +98,51 @@ Sign insphere(const Point3& a, const Point3& b, const Point3& c, const Point3& d
 void circumcenter_barycentric_signs(const Point3& a, const Point3& b, const Point3& c,
                                     const Point3& d, Sign out[4]) {
   auto& cnt = predicate_counters();
-  // Even permutations of (a,b,c,d) keep D > 0 and bring each vertex to slot 1.
+  // Orientation-preserving orders that bring each vertex to slot 1 of
+  // circ_bary_numerator: a -> (b,a,d,c), b -> (a,b,c,d), c -> (a,c,d,b), d -> (a,d,b,c).
   const Point3* p[4] = {&a, &b, &c, &d};
-  static constexpr int perm[4][4] = {{1, 0, 3, 2}, {0, 1, 2, 3}, {0, 3, 1, 2}, {0, 2, 3, 1}};
+  static constexpr int perm[4][4] = {{1, 0, 3, 2}, {0, 1, 2, 3}, {0, 2, 3, 1}, {0, 3, 1, 2}};
+  // Semi-static filter (proofs/star_filter.md, §circumcenter): the value in
+  // doubles and the same expression tree on absolute values, mag; the rounding
+  // error of the degree-6 polynomial is below 64 eps mag. For b, c, d the
+  // orders start at a and rotate (u, v, w) = (b-a, c-a, d-a), so the three
+  // share their cross products: with n = |u|^2 (v x w) + |v|^2 (w x u) + |w|^2 (u x v),
+  // the numerators are n.(v x w), n.(w x u), n.(u x v) (each summed in the
+  // order of circ_bary_numerator, so the bound is the same).
+  double val[4], mag[4];
+  auto acr = [](const Vec3& x, const Vec3& y) {
+    return Vec3{x.y * y.z + x.z * y.y, x.z * y.x + x.x * y.z, x.x * y.y + x.y * y.x};
+  };
+  auto fabs3 = [](const Vec3& x) { return Vec3{std::fabs(x.x), std::fabs(x.y), std::fabs(x.z)}; };
+  {
+    const Vec3 u = b - a, v = c - a, w = d - a;
+    const Vec3 au = fabs3(u), av = fabs3(v), aw = fabs3(w);
+    const Vec3 vw = cross(v, w), wu = cross(w, u), uv = cross(u, v);
+    const Vec3 avw = acr(av, aw), awu = acr(aw, au), auv = acr(au, av);
+    const double nu = dot(u, u), nv = dot(v, v), nw = dot(w, w);
+    val[1] = nu * dot(vw, vw) + nv * dot(wu, vw) + nw * dot(uv, vw);
+    mag[1] = nu * dot(avw, avw) + nv * dot(awu, avw) + nw * dot(auv, avw);
+    val[2] = nv * dot(wu, wu) + nw * dot(uv, wu) + nu * dot(vw, wu);
+    mag[2] = nv * dot(awu, awu) + nw * dot(auv, awu) + nu * dot(avw, awu);
+    val[3] = nw * dot(uv, uv) + nu * dot(vw, uv) + nv * dot(wu, uv);
+    mag[3] = nw * dot(auv, auv) + nu * dot(avw, auv) + nv * dot(awu, auv);
+  }
+  {
+    const Vec3 u = a - b, v = d - b, w = c - b;  // order (b, a, d, c)
+    const Vec3 au = fabs3(u), av = fabs3(v), aw = fabs3(w);
+    const Vec3 vw = cross(v, w), wu = cross(w, u), uv = cross(u, v);
+    const Vec3 avw = acr(av, aw), awu = acr(aw, au), auv = acr(au, av);
+    const double nu = dot(u, u), nv = dot(v, v), nw = dot(w, w);
+    val[0] = nu * dot(vw, vw) + nv * dot(wu, vw) + nw * dot(uv, vw);
+    mag[0] = nu * dot(avw, avw) + nv * dot(awu, avw) + nw * dot(auv, avw);
+  }
   for (int i = 0; i < 4; ++i) {
-    const auto& q = perm[i];
-    // Semi-static filter (proofs/star_filter.md, §circumcenter): the value in
-    // doubles and the same expression tree on absolute values, P; the rounding
-    // error of the degree-6 polynomial is below 64 eps P.
-    {
-      const Point3 &p0 = *p[q[0]], &p1 = *p[q[1]], &p2 = *p[q[2]], &p3 = *p[q[3]];
-      const Vec3 u = p1 - p0, v = p2 - p0, w = p3 - p0;
-      const Vec3 au{std::fabs(u.x), std::fabs(u.y), std::fabs(u.z)}, av{std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)},
-          aw{std::fabs(w.x), std::fabs(w.y), std::fabs(w.z)};
-      auto acr = [](const Vec3& a, const Vec3& b) {
-        return Vec3{a.y * b.z + a.z * b.y, a.z * b.x + a.x * b.z, a.x * b.y + a.y * b.x};
-      };
-      const Vec3 vw = cross(v, w), wu = cross(w, u), uv = cross(u, v);
-      const Vec3 avw = acr(av, aw), awu = acr(aw, au), auv = acr(au, av);
-      const double val = dot(u, u) * dot(vw, vw) + dot(v, v) * dot(wu, vw) + dot(w, w) * dot(uv, vw);
-      const double mag = dot(au, au) * dot(avw, avw) + dot(av, av) * dot(awu, avw) + dot(aw, aw) * dot(auv, avw);
-      const double bound = 64.0 * (DBL_EPSILON / 2) * mag;
-      if (std::isfinite(mag) && mag > 1e-200) {
-        if (val > bound) { out[i] = Sign::Positive; continue; }
-        if (val < -bound) { out[i] = Sign::Negative; continue; }
-      }
+    const double bound = 64.0 * (DBL_EPSILON / 2) * mag[i];
+    if (std::isfinite(mag[i]) && mag[i] > 1e-200) {
+      if (val[i] > bound) { out[i] = Sign::Positive; continue; }
+      if (val[i] < -bound) { out[i] = Sign::Negative; continue; }
     }
+    const auto& q = perm[i];
     out[i] = filtered_sign(
         [&](auto zero) {
           using NT = decltype(zero);
