@@ -88,18 +88,17 @@ void make_edge_faces(const ClassifiedTetMesh& m, const VertexSides& sides, const
     const EdgeId eid(e);
     const VertexId a = m.edge(eid)[0], b = m.edge(eid)[1];
     bool closed;
-    m.edge_ring(eid, ring, tris, closed);
-    const std::size_t n = ring.size();
     if (m.edge_class(eid).dim == 3) {
       // Classified in a region: no model-face triangle around it (classify()),
       // so the ring is closed and uncut: one face of the tet centres.
-      loop.clear();
-      for (TetId t : ring) loop.push_back(PointId(t.idx));
-      const TetId t0 = ring[0];
-      pm.add_face(loop, sides.cell(t0, m.local_index(t0, a)), sides.cell(t0, m.local_index(t0, b)),
-                  FaceKind::Interior, 0);
+      m.for_each_closed_ring_tet(eid, [&](TetId t) { pm.face_points.push_back(PointId(t.idx)); });
+      const TetId t0 = m.edge_tet(eid);
+      pm.close_face(sides.cell(t0, m.local_index(t0, a)), sides.cell(t0, m.local_index(t0, b)),
+                    FaceKind::Interior, 0);
       continue;
     }
+    m.edge_ring(eid, ring, tris, closed);
+    const std::size_t n = ring.size();
     cuts.clear();
     for (std::size_t k = 0; k < n; ++k)
       if (m.on_model_face(tris[k])) cuts.push_back(k);

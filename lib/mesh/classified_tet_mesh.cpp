@@ -11,33 +11,7 @@ namespace {
 // Outward-oriented local faces of a positive tet: face i is opposite vertex i.
 constexpr int kTetFace[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
 
-constexpr bool even_permutation(int a, int b, int c, int d) {
-  int p[4] = {a, b, c, d}, inv = 0;
-  for (int i = 0; i < 4; ++i)
-    for (int j = i + 1; j < 4; ++j) inv += p[i] > p[j];
-  return inv % 2 == 0;
-}
-
-// For local indices ia, ib of an edge, the other two local indices (ic, id) such
-// that (ia, ib, ic, id) is an even permutation: going around ia->ib right-handedly
-// inside the tet leads from ic to id. Tabulated: this sits in the edge-ring walk.
-struct RingTable {
-  std::int8_t c[4][4], d[4][4];
-  constexpr RingTable() : c{}, d{} {
-    for (int ia = 0; ia < 4; ++ia)
-      for (int ib = 0; ib < 4; ++ib) {
-        if (ia == ib) continue;
-        int o[2] = {0, 0}, n = 0;
-        for (int i = 0; i < 4; ++i)
-          if (i != ia && i != ib) o[n++] = i;
-        const bool even = even_permutation(ia, ib, o[0], o[1]);
-        c[ia][ib] = static_cast<std::int8_t>(even ? o[0] : o[1]);
-        d[ia][ib] = static_cast<std::int8_t>(even ? o[1] : o[0]);
-      }
-  }
-};
-constexpr RingTable kRing;
-
+using detail::kRing;
 inline void ring_others(int ia, int ib, int& ic, int& id) {
   ic = kRing.c[ia][ib];
   id = kRing.d[ia][ib];

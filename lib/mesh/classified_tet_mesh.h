@@ -21,6 +21,31 @@ namespace polydual {
 
 inline constexpr int kTetEdge[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
 
+namespace detail {
+// For local indices ia, ib of an edge, the other two local indices (c, d) such
+// that (ia, ib, c, d) is an even permutation: going around ia->ib right-handedly
+// inside the tet leads from c to d. Tabulated: this sits in the edge-ring walks.
+struct RingTable {
+  std::int8_t c[4][4], d[4][4];
+  constexpr RingTable() : c{}, d{} {
+    for (int ia = 0; ia < 4; ++ia)
+      for (int ib = 0; ib < 4; ++ib) {
+        if (ia == ib) continue;
+        int o[2] = {0, 0}, n = 0;
+        for (int i = 0; i < 4; ++i)
+          if (i != ia && i != ib) o[n++] = i;
+        int p[4] = {ia, ib, o[0], o[1]}, inv = 0;
+        for (int i = 0; i < 4; ++i)
+          for (int j = i + 1; j < 4; ++j) inv += p[i] > p[j];
+        const bool even = inv % 2 == 0;
+        c[ia][ib] = static_cast<std::int8_t>(even ? o[0] : o[1]);
+        d[ia][ib] = static_cast<std::int8_t>(even ? o[1] : o[0]);
+      }
+  }
+};
+inline constexpr RingTable kRing;
+}  // namespace detail
+
 // One entity of the geometric model and the higher-dimensional entities it bounds
 // (a model face lists its regions: 0 for a fracture inside one region, 1 external,
 // 2 interface; a model edge lists its faces; a model vertex its edges).
@@ -83,6 +108,20 @@ class ClassifiedTetMesh {
   // tris[k] precedes tets[k] and tris[k+1] follows it in the right-handed order;
   // for a closed ring tris.front() == tris.back().
   void edge_ring(EdgeId e, std::vector<TetId>& tets, std::vector<TriId>& tris, bool& closed) const;
+  // Calls f(t) for each tet around an edge whose ring is closed (an edge
+  // classified in a region is), in edge_ring's order, without building the ring.
+  template <class F>
+  void for_each_closed_ring_tet(EdgeId e, F&& f) const {
+    const VertexId a = edge_verts_[e.idx][0], b = edge_verts_[e.idx][1];
+    const TetId start = edge_tet_[e.idx];
+    TetId t = start;
+    do {
+      f(t);
+      const std::uint32_t code = tet_adj_[4 * t.idx + detail::kRing.c[local_index(t, a)][local_index(t, b)]];
+      if (code == kNoNeighbour) return;  // open after all: the caller broke the contract
+      t = TetId(code >> 2);
+    } while (t != start);
+  }
   // The edge joining two vertices of triangle f.
   EdgeId triangle_edge(TriId f, VertexId a, VertexId b) const;
   // Local index (0..3) of v in tet t, or -1.

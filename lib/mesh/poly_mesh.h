@@ -66,6 +66,10 @@ struct PolyMesh {
   FaceId add_face(std::span<const PointId> loop, CellId owner, CellId neighbour, FaceKind kind,
                   std::int32_t tag) {
     face_points.insert(face_points.end(), loop.begin(), loop.end());
+    return close_face(owner, neighbour, kind, tag);
+  }
+  // Ends a face whose loop was appended to face_points directly.
+  FaceId close_face(CellId owner, CellId neighbour, FaceKind kind, std::int32_t tag) {
     face_offsets.push_back(static_cast<std::uint32_t>(face_points.size()));
     face_owner.push_back(owner);
     face_neighbour.push_back(neighbour);
