@@ -1,6 +1,7 @@
 // lib/predicates: sign conventions and exactness against rational arithmetic.
 #include <gtest/gtest.h>
 
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Gmpq.h>
 
 #include <cmath>
@@ -46,6 +47,41 @@ TEST(Predicates, CircumcenterOfCornerTetIsOutside) {
   EXPECT_EQ(t[0], Sign::Zero);
   EXPECT_EQ(t[1], Sign::Positive);
   EXPECT_EQ(t[2], Sign::Positive);
+}
+
+// The filtered orient3d and insphere agree with CGAL's exact predicates on
+// random, nearly degenerate and exactly degenerate inputs (the filters must
+// never decide a wrong sign; undecided cases go to CGAL).
+TEST(Predicates, FilteredOrientAndInsphereMatchCgal) {
+  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+  auto kp = [](const Point3& p) { return K::Point_3(p.x, p.y, p.z); };
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> U(-1, 1);
+  int zero_o = 0, zero_s = 0, pos_s = 0, neg_s = 0;
+  for (int iter = 0; iter < 20000; ++iter) {
+    Point3 p[5];
+    for (auto& x : p) x = {U(rng), U(rng), U(rng)};
+    if (iter % 4 == 1) p[3] = p[0] + 0.3 * (p[1] - p[0]) + 0.7 * (p[2] - p[0]);  // nearly coplanar (rounded)
+    if (iter % 4 == 2)  // on a lattice: exact coplanarities and cosphericities
+      for (auto& x : p) x = {std::round(2 * x.x), std::round(2 * x.y), std::round(2 * x.z)};
+    if (iter % 4 == 3) {  // e on the circumsphere of a right corner, up to rounding
+      const double s = 1 + U(rng);
+      p[0] = {0, 0, 0}; p[1] = {s, 0, 0}; p[2] = {0, s, 0}; p[3] = {0, 0, s};
+      p[4] = {s, s, (iter % 8 == 3) ? s : s * (1 + 1e-16)};
+    }
+    const int o = static_cast<int>(CGAL::orientation(kp(p[0]), kp(p[1]), kp(p[2]), kp(p[3])));
+    ASSERT_EQ(static_cast<int>(orient3d(p[0], p[1], p[2], p[3])), o) << iter;
+    zero_o += o == 0;
+    const int sp = static_cast<int>(CGAL::side_of_oriented_sphere(kp(p[0]), kp(p[1]), kp(p[2]), kp(p[3]), kp(p[4])));
+    ASSERT_EQ(static_cast<int>(insphere(p[0], p[1], p[2], p[3], p[4])), sp) << iter;
+    zero_s += sp == 0;
+    pos_s += sp > 0;
+    neg_s += sp < 0;
+  }
+  EXPECT_GT(zero_o, 100);
+  EXPECT_GT(zero_s, 100);
+  EXPECT_GT(pos_s, 1000);
+  EXPECT_GT(neg_s, 1000);
 }
 
 // Each out[i] is the sign of the circumcentre's barycentric coordinate at

@@ -91,6 +91,39 @@ Sign orient3d(const Point3& a, const Point3& b, const Point3& c, const Point3& d
 }
 
 Sign insphere(const Point3& a, const Point3& b, const Point3& c, const Point3& d, const Point3& e) {
+  // Semi-static filter: Shewchuk's insphere stage A (errboundA = (16 + 224 eps)
+  // eps times the permanent) on differences to e. His determinant is positive
+  // for e inside when det[a-d, b-d, c-d] > 0, i.e. for tets that are negative in
+  // our convention, so our sign is the opposite of his. Undecided (or tiny or
+  // huge magnitudes): CGAL's filtered exact predicate.
+  const double aex = a.x - e.x, bex = b.x - e.x, cex = c.x - e.x, dex = d.x - e.x;
+  const double aey = a.y - e.y, bey = b.y - e.y, cey = c.y - e.y, dey = d.y - e.y;
+  const double aez = a.z - e.z, bez = b.z - e.z, cez = c.z - e.z, dez = d.z - e.z;
+  const double aexbey = aex * bey, bexaey = bex * aey, bexcey = bex * cey, cexbey = cex * bey;
+  const double cexdey = cex * dey, dexcey = dex * cey, dexaey = dex * aey, aexdey = aex * dey;
+  const double aexcey = aex * cey, cexaey = cex * aey, bexdey = bex * dey, dexbey = dex * bey;
+  const double ab = aexbey - bexaey, bc = bexcey - cexbey, cd = cexdey - dexcey, da = dexaey - aexdey;
+  const double ac = aexcey - cexaey, bd = bexdey - dexbey;
+  const double abc = aez * bc - bez * ac + cez * ab;
+  const double bcd = bez * cd - cez * bd + dez * bc;
+  const double cda = cez * da + dez * ac + aez * cd;
+  const double dab = dez * ab + aez * bd + bez * da;
+  const double alift = aex * aex + aey * aey + aez * aez, blift = bex * bex + bey * bey + bez * bez;
+  const double clift = cex * cex + cey * cey + cez * cez, dlift = dex * dex + dey * dey + dez * dez;
+  const double det = (dlift * abc - clift * dab) + (blift * cda - alift * bcd);
+  const double aezp = std::fabs(aez), bezp = std::fabs(bez), cezp = std::fabs(cez), dezp = std::fabs(dez);
+  const double abp = std::fabs(aexbey) + std::fabs(bexaey), bcp = std::fabs(bexcey) + std::fabs(cexbey);
+  const double cdp = std::fabs(cexdey) + std::fabs(dexcey), dap = std::fabs(dexaey) + std::fabs(aexdey);
+  const double acp = std::fabs(aexcey) + std::fabs(cexaey), bdp = std::fabs(bexdey) + std::fabs(dexbey);
+  const double perm = (cdp * bezp + bdp * cezp + bcp * dezp) * alift + (dap * cezp + acp * dezp + cdp * aezp) * blift +
+                      (abp * dezp + bdp * aezp + dap * bezp) * clift + (bcp * aezp + acp * bezp + abp * cezp) * dlift;
+  constexpr double eps = DBL_EPSILON / 2;
+  constexpr double kBoundA = (16.0 + 224.0 * eps) * eps;
+  if (perm > 1e-200 && perm < 1e200) {
+    const double bound = kBoundA * perm;
+    if (det > bound) return Sign::Negative;
+    if (det < -bound) return Sign::Positive;
+  }
   // side_of_oriented_sphere: ON_POSITIVE_SIDE means inside for positive tets.
   return to_sign(static_cast<int>(CGAL::side_of_oriented_sphere(kp(a), kp(b), kp(c), kp(d), kp(e))));
 }
