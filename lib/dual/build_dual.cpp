@@ -7,6 +7,7 @@
 //   STEP 8    cells: one per side of every primal vertex.
 #include "dual/build_dual.h"
 
+#include <bit>
 #include <chrono>
 
 #include <tbb/blocked_range.h>
@@ -29,11 +30,40 @@ FaceKind kind_of_model_face(const ClassifiedTetMesh& m, std::int32_t tag) {
   return e->regions[0] == e->regions[1] ? FaceKind::Fracture : FaceKind::Interface;
 }
 
+// Dual point ids of a sparse subset of primal entities (model-face triangles,
+// model-edge edges), numbered consecutively in entity order from `first`: one
+// bit per entity and a running count per 64 (a rank query), instead of a
+// 4-byte id per entity at the memory peak.
+class SparsePoints {
+ public:
+  void init(std::size_t n) { bits_.assign((n + 63) / 64, 0); }
+  void set(std::size_t i) { bits_[i >> 6] |= std::uint64_t(1) << (i & 63); }
+  void finish(std::uint32_t first) {
+    first_ = first;
+    prefix_.resize(bits_.size());
+    std::uint32_t sum = 0;
+    for (std::size_t b = 0; b < bits_.size(); ++b) { prefix_[b] = sum; sum += std::uint32_t(std::popcount(bits_[b])); }
+  }
+  bool has(std::size_t i) const { return (bits_[i >> 6] >> (i & 63)) & 1u; }
+  // Rank of entity i among the set ones (i must be set).
+  std::uint32_t rank(std::size_t i) const {
+    const std::uint64_t below = bits_[i >> 6] & ((std::uint64_t(1) << (i & 63)) - 1);
+    return prefix_[i >> 6] + std::uint32_t(std::popcount(below));
+  }
+  PointId operator[](std::size_t i) const { return has(i) ? PointId(first_ + rank(i)) : PointId::invalid(); }
+
+ private:
+  std::vector<std::uint64_t> bits_;
+  std::vector<std::uint32_t> prefix_;
+  std::uint32_t first_ = 0;
+};
+
 struct DualPoints {
-  std::vector<PointId> tri_point;   // per triangle (model-face triangles only)
-  std::vector<PointId> edge_point;  // per edge (model-edge edges only)
+  SparsePoints tri_point;           // model-face triangles
+  SparsePoints edge_point;          // model-edge edges
   std::vector<PointId> vert_point;  // per vertex (model vertices only)
-  std::vector<char> tet_well_centred, tri_well_centred;
+  std::vector<char> tet_well_centred;
+  std::vector<char> tri_well_centred;  // by rank among the model-face triangles
 };
 
 // STEP 1-4. Tet centers get PointId == TetId.
@@ -54,22 +84,27 @@ DualPoints make_points(const ClassifiedTetMesh& m, PolyMesh& pm, DualStats& st) 
     }
   });
   for (char w : d.tet_well_centred) (w ? st.well_centred_tets : st.clamped_tets)++;
-  d.tri_point.assign(m.num_triangles(), PointId::invalid());
-  d.tri_well_centred.assign(m.num_triangles(), 0);
+  d.tri_point.init(m.num_triangles());
+  const std::uint32_t first_tri_point = std::uint32_t(pm.num_points());
   for (std::size_t f = 0; f < m.num_triangles(); ++f) {
     if (!m.on_model_face(TriId(f))) continue;
     const auto& v = m.triangle(TriId(f));
     CentralPoint c = triangle_central_point(m.point(v[0]), m.point(v[1]), m.point(v[2]));
-    d.tri_point[f] = pm.add_point(c.p, m.triangle_class(TriId(f)));
-    d.tri_well_centred[f] = c.well_centred;
+    pm.add_point(c.p, m.triangle_class(TriId(f)));
+    d.tri_point.set(f);
+    d.tri_well_centred.push_back(c.well_centred);
     (c.well_centred ? st.well_centred_triangles : st.clamped_triangles)++;
   }
-  d.edge_point.assign(m.num_edges(), PointId::invalid());
+  d.tri_point.finish(first_tri_point);
+  d.edge_point.init(m.num_edges());
+  const std::uint32_t first_edge_point = std::uint32_t(pm.num_points());
   for (std::size_t e = 0; e < m.num_edges(); ++e) {
     if (m.edge_class(EdgeId(e)).dim != 1) continue;
     const auto& v = m.edge(EdgeId(e));
-    d.edge_point[e] = pm.add_point(0.5 * (m.point(v[0]) + m.point(v[1])), m.edge_class(EdgeId(e)));
+    pm.add_point(0.5 * (m.point(v[0]) + m.point(v[1])), m.edge_class(EdgeId(e)));
+    d.edge_point.set(e);
   }
+  d.edge_point.finish(first_edge_point);
   d.vert_point.assign(m.num_vertices(), PointId::invalid());
   for (std::size_t v = 0; v < m.num_vertices(); ++v)
     if (m.vertex_class(VertexId(v)).dim == 0)
@@ -93,7 +128,7 @@ void make_edge_faces(const ClassifiedTetMesh& m, const VertexSides& sides, const
       // so the ring is closed and uncut: one face of the tet centres.
       m.for_each_closed_ring_tet(eid, [&](TetId t) { pm.face_points.push_back(PointId(t.idx)); });
       const TetId t0 = m.edge_tet(eid);
-      pm.close_face(sides.cell(t0, m.local_index(t0, a)), sides.cell(t0, m.local_index(t0, b)),
+      pm.close_face(sides.cell(t0, a), sides.cell(t0, b),
                     FaceKind::Interior, 0);
       continue;
     }
@@ -120,7 +155,7 @@ void make_edge_faces(const ClassifiedTetMesh& m, const VertexSides& sides, const
         if (d.edge_point[e].valid()) loop.push_back(d.edge_point[e]);
       }
       const TetId t0 = ring[s % n];
-      pm.add_face(loop, sides.cell(t0, m.local_index(t0, a)), sides.cell(t0, m.local_index(t0, b)),
+      pm.add_face(loop, sides.cell(t0, a), sides.cell(t0, b),
                   FaceKind::Interior, 0);
     };
     if (cuts.empty()) {
@@ -227,8 +262,8 @@ void make_caps(const ClassifiedTetMesh& m, const VertexSides& sides, const DualP
       // `first`'s stored orientation points out of.
       const TriId f0 = first.f;
       const TetId t0 = m.triangle_tet(f0, 0), t1 = m.triangle_tet(f0, 1);
-      const CellId owner = sides.cell(t0, m.local_index(t0, v));
-      const CellId neigh = t1.valid() ? sides.cell(t1, m.local_index(t1, v)) : CellId::invalid();
+      const CellId owner = sides.cell(t0, v);
+      const CellId neigh = t1.valid() ? sides.cell(t1, v) : CellId::invalid();
       const std::int32_t tag = m.triangle_class(f0).tag;
       if (owner == neigh) ++st.slit_faces;
       pm.add_face(loop, owner, neigh, kind_of_model_face(m, tag), tag);
@@ -263,7 +298,7 @@ std::vector<std::pair<PointId, PointId>> exact_coincidences(const ClassifiedTetM
   std::vector<TriId> first(m.num_edges(), TriId::invalid());
   for (std::size_t fi = 0; fi < m.num_triangles(); ++fi) {
     const TriId f(fi);
-    if (!m.on_model_face(f) || !d.tri_well_centred[fi]) continue;
+    if (!m.on_model_face(f) || !d.tri_well_centred[d.tri_point.rank(fi)]) continue;
     const auto& tv = m.triangle(f);
     for (int k = 0; k < 3; ++k) {
       const EdgeId e = m.triangle_edge(f, tv[k], tv[(k + 1) % 3]);
@@ -360,6 +395,19 @@ PolyMesh build_dual(const ClassifiedTetMesh& m, const DualParams& params, DualSt
   DualPoints d = make_points(m, pm, st);
   st.seconds_points = since(t0);
 
+  // STEP 9, first half: the exact coincidences need only the points, so find
+  // them now and free the well-centred flags before the faces fill memory.
+  t0 = Clock::now();
+  std::vector<std::pair<PointId, PointId>> pairs;
+  double collapse = 0;
+  if (params.cleanup) {
+    pairs = exact_coincidences(m, d, pm);
+    collapse = params.collapse_tolerance * mean_edge_length(m);
+  }
+  d.tet_well_centred = std::vector<char>();
+  d.tri_well_centred = std::vector<char>();
+  st.seconds_cleanup = since(t0);
+
   t0 = Clock::now();
   VertexSides sides = compute_sides(m);
   st.seconds_sides = since(t0);
@@ -369,12 +417,6 @@ PolyMesh build_dual(const ClassifiedTetMesh& m, const DualParams& params, DualSt
   st.seconds_faces = since(t0);
 
   t0 = Clock::now();
-  std::vector<std::pair<PointId, PointId>> pairs;
-  double collapse = 0;
-  if (params.cleanup) {
-    pairs = exact_coincidences(m, d, pm);
-    collapse = params.collapse_tolerance * mean_edge_length(m);
-  }
   pm.cell_material = std::move(sides.cell_material);
   // Cells name their primal vertex in the input's numbering (what users and
   // files see; ClassifiedTetMesh::input_vertex).
@@ -389,7 +431,7 @@ PolyMesh build_dual(const ClassifiedTetMesh& m, const DualParams& params, DualSt
   st.merged_points = cr.merged_points;
   st.collapsed_points = cr.collapsed_points;
   st.dropped_faces = cr.dropped_faces;
-  st.seconds_cleanup = since(t0);
+  st.seconds_cleanup += since(t0);
 
   t0 = Clock::now();
   assemble_cells(pm, num_cells);

@@ -5,9 +5,11 @@
 namespace polydual {
 
 VertexSides compute_sides(const ClassifiedTetMesh& m) {
-  const std::size_t nt = m.num_tets(), nv = m.num_vertices();
+  const std::size_t nv = m.num_vertices();
   VertexSides out;
-  out.cell_of.assign(4 * nt, CellId::invalid());
+  out.mesh = &m;
+  out.first_cell.resize(nv);
+  out.corner_off.assign(nv, VertexSides::kOneSide);
   out.cell_vertex.reserve(nv + nv / 4);
   out.cell_material.reserve(nv + nv / 4);
   // Per vertex v, a union-find over the positions of its star (sorted by tet):
@@ -20,12 +22,12 @@ VertexSides compute_sides(const ClassifiedTetMesh& m) {
   for (std::size_t vi = 0; vi < nv; ++vi) {
     const VertexId v(vi);
     const std::span<const TetId> star = m.vertex_tets(v);
+    out.first_cell[vi] = std::uint32_t(out.num_cells);
     // A vertex on no model face (classified in a region) has a single side.
     if (m.vertex_class(v).dim == 3) {
-      const CellId c(out.num_cells++);
+      ++out.num_cells;
       out.cell_vertex.push_back(v);
       out.cell_material.push_back(m.region(star.front()));
-      for (TetId t : star) out.cell_of[4 * t.idx + m.local_index(t, v)] = c;
       continue;
     }
     const std::uint32_t n = std::uint32_t(star.size());
@@ -43,6 +45,7 @@ VertexSides compute_sides(const ClassifiedTetMesh& m) {
         if (a != b) parent[std::max(a, b)] = std::min(a, b);
       }
     }
+    out.corner_off[vi] = std::uint32_t(out.corner_cell.size());
     root_cell.assign(n, CellId::kInvalid);
     for (std::uint32_t k = 0; k < n; ++k) {
       const std::uint32_t r = find(k);
@@ -51,7 +54,7 @@ VertexSides compute_sides(const ClassifiedTetMesh& m) {
         out.cell_vertex.push_back(v);
         out.cell_material.push_back(m.region(star[k]));
       }
-      out.cell_of[4 * star[k].idx + m.local_index(star[k], v)] = CellId(root_cell[r]);
+      out.corner_cell.push_back(CellId(root_cell[r]));
     }
   }
   return out;

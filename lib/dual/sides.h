@@ -1,6 +1,7 @@
 // Sides of primal vertices (SPEC §1): the tets around v connected through
 // triangles not on a model face. One dual cell per side.
 #pragma once
+#include <algorithm>
 #include <vector>
 
 #include "core/handles.h"
@@ -9,13 +10,26 @@
 namespace polydual {
 
 struct VertexSides {
-  // cell_of[4*t + i]: the dual cell of the side of tet t's local vertex i.
-  std::vector<CellId> cell_of;
+  static constexpr std::uint32_t kOneSide = 0xffffffffu;
+  const ClassifiedTetMesh* mesh = nullptr;
+  // first_cell[v]: the cell of v's first side (its only one unless corner_off[v]
+  // is set). Vertices on model faces keep one cell per star entry:
+  // corner_cell[corner_off[v] + k] is the cell of v in vertex_tets(v)[k].
+  // (4 bytes per star entry only where a vertex can have several sides.)
+  std::vector<std::uint32_t> first_cell, corner_off;
+  std::vector<CellId> corner_cell;
   std::size_t num_cells = 0;
   // cell -> (primal vertex, material)
   std::vector<VertexId> cell_vertex;
   std::vector<std::int32_t> cell_material;
-  CellId cell(TetId t, int local) const { return cell_of[4 * t.idx + local]; }
+
+  // The dual cell of the side of v that contains tet t (t must have v).
+  CellId cell(TetId t, VertexId v) const {
+    const std::uint32_t off = corner_off[v.idx];
+    if (off == kOneSide) return CellId(first_cell[v.idx]);
+    const auto star = mesh->vertex_tets(v);
+    return corner_cell[off + std::size_t(std::lower_bound(star.begin(), star.end(), t) - star.begin())];
+  }
 };
 
 // Cells are numbered by primal vertex, then by the first tet (in star order)
