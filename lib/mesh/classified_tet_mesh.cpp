@@ -141,86 +141,85 @@ ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector
       for (VertexId v : m.tets_[t]) m.vstar_[fill[v.idx]++] = TetId(t);
   }
 
-  // Face adjacency, one vertex v at a time. A tet face's smallest vertex is
-  // the tet's smallest vertex (three faces) or, for the face opposite it, the
-  // tet's second smallest: bucket the tets by both (counting sorts), collect
-  // the faces of bucket v keyed by their two other vertices (one 64-bit key),
-  // sort (stable insertion sort, the buckets are small) and pair equal keys
-  // (two at most).
+  // Tets bucketed by their smallest, second and third smallest vertex
+  // (counting sorts, tet order kept in each bucket). Every tet face has its
+  // smallest vertex in bucket 0 (three faces) or 1 (the face opposite the
+  // smallest vertex); every tet edge has its lower vertex in bucket 0 (three
+  // edges), 1 (two) or 2 (one). Faces and edges are then found one vertex at a
+  // time among a few tets.
+  // sorted[t]: t's local indices by increasing vertex id, 2 bits each.
+  std::vector<std::uint8_t> sorted(nt);
+  std::array<std::vector<std::uint32_t>, 3> boff, bucket;
+  {
+    for (std::size_t t = 0; t < nt; ++t) {
+      const auto& tv = m.tets_[t];
+      int o[4] = {0, 1, 2, 3};
+      for (int i = 1; i < 4; ++i)
+        for (int j = i; j > 0 && tv[o[j]].idx < tv[o[j - 1]].idx; --j) std::swap(o[j], o[j - 1]);
+      sorted[t] = std::uint8_t(o[0] | o[1] << 2 | o[2] << 4 | o[3] << 6);
+    }
+    for (int r = 0; r < 3; ++r) {
+      boff[r].assign(nv + 1, 0);
+      for (std::size_t t = 0; t < nt; ++t) ++boff[r][m.tets_[t][(sorted[t] >> (2 * r)) & 3].idx + 1];
+      std::partial_sum(boff[r].begin(), boff[r].end(), boff[r].begin());
+      bucket[r].resize(nt);
+      std::vector<std::uint32_t> fill(boff[r].begin(), boff[r].end() - 1);
+      for (std::size_t t = 0; t < nt; ++t) bucket[r][fill[m.tets_[t][(sorted[t] >> (2 * r)) & 3].idx]++] = std::uint32_t(t);
+    }
+  }
+
+  // Face adjacency: for each vertex v, the faces whose smallest vertex is v
+  // (buckets 0 and 1), matched on their two other vertices (mid, max): faces
+  // with the same mid are chained from a head per vertex (stamped with v), so
+  // each face looks only at the few earlier faces sharing its mid. Two equal
+  // faces pair; a third is a non-conformity.
   m.tet_adj_.assign(4 * nt, kNoNeighbour);
   m.tet_tri_.assign(4 * nt, TriId::invalid());
   std::size_t num_tris = 0;
   {
-    // low[t]: local index of t's smallest vertex; second[t]: of its second smallest.
-    std::vector<std::uint8_t> low(nt), second(nt);
-    std::vector<std::uint32_t> off1(nv + 1, 0), off2(nv + 1, 0);
-    for (std::size_t t = 0; t < nt; ++t) {
-      const auto& tv = m.tets_[t];
-      int l = 0;
-      for (int i = 1; i < 4; ++i) l = tv[i].idx < tv[l].idx ? i : l;
-      int s2 = l == 0 ? 1 : 0;
-      for (int i = 0; i < 4; ++i) s2 = (i != l && tv[i].idx < tv[s2].idx) ? i : s2;
-      low[t] = std::uint8_t(l);
-      second[t] = std::uint8_t(s2);
-      ++off1[tv[l].idx + 1];
-      ++off2[tv[s2].idx + 1];
-    }
-    std::partial_sum(off1.begin(), off1.end(), off1.begin());
-    std::partial_sum(off2.begin(), off2.end(), off2.begin());
-    std::vector<std::uint32_t> by_low(nt), by_second(nt);
-    {
-      std::vector<std::uint32_t> f1(off1.begin(), off1.end() - 1), f2(off2.begin(), off2.end() - 1);
-      for (std::size_t t = 0; t < nt; ++t) {
-        by_low[f1[m.tets_[t][low[t]].idx]++] = std::uint32_t(t);
-        by_second[f2[m.tets_[t][second[t]].idx]++] = std::uint32_t(t);
-      }
-    }
-    struct FaceRec { std::uint64_t key; std::uint32_t code; };  // key = mid << 32 | max, code = 4t + i
+    constexpr std::uint32_t kEnd = 0xffffffffu;
+    struct FaceRec { std::uint32_t max, code, next; bool paired; };  // code = 4t + i
     std::vector<FaceRec> recs;
-    auto push_face = [&](std::uint32_t t, int i) {
-      const auto& tv = m.tets_[t];
-      std::uint32_t a = tv[kTetFace[i][0]].idx, b = tv[kTetFace[i][1]].idx, c = tv[kTetFace[i][2]].idx;
-      if (a > b) std::swap(a, b);
-      if (b > c) std::swap(b, c);
-      if (a > b) std::swap(a, b);
-      recs.push_back({std::uint64_t(b) << 32 | c, 4 * t + std::uint32_t(i)});
-    };
+    std::vector<std::uint32_t> stamp(nv, kEnd), head(nv, kEnd);
     for (std::size_t v = 0; v < nv; ++v) {
+      const std::uint32_t vv = std::uint32_t(v);
       recs.clear();
-      for (std::uint32_t k = off1[v]; k < off1[v + 1]; ++k) {
-        const std::uint32_t t = by_low[k];
-        for (int i = 0; i < 4; ++i)
-          if (i != low[t]) push_face(t, i);
-      }
-      for (std::uint32_t k = off2[v]; k < off2[v + 1]; ++k) push_face(by_second[k], low[by_second[k]]);
-      for (std::size_t i = 1; i < recs.size(); ++i) {
-        const FaceRec r = recs[i];
-        std::size_t j = i;
-        for (; j > 0 && r.key < recs[j - 1].key; --j) recs[j] = recs[j - 1];
-        recs[j] = r;
-      }
-      for (auto it = recs.begin(); it != recs.end();) {
-        auto jt = it + 1;
-        while (jt != recs.end() && jt->key == it->key) ++jt;
-        const std::size_t n = std::size_t(jt - it);
-        ++num_tris;
-        if (n >= 2) {
-          const std::uint32_t t = it->code / 4, ti = it->code % 4;
-          const std::uint32_t s2 = (it + 1)->code / 4, si = (it + 1)->code % 4;
-          if (m.tets_[s2][si] == m.tets_[t][ti])
-            throw InputError(m.source_, tet_place(std::max(t, s2)),
-                             "duplicated tet (same four vertices as " + tet_place(std::min(t, s2)) + ")");
-          if (n > 2)
-            throw InputError(m.source_, tet_place(t),
-                             "non-conformal mesh: triangle (" + vnum(v) + ", " + vnum(it->key >> 32) + ", " +
-                                 vnum(it->key & 0xffffffffu) + ") is shared by more than two tets (" +
-                                 std::to_string(m.input_tet_[t] + 1) + ", " + std::to_string(m.input_tet_[s2] + 1) +
-                                 ", " + std::to_string(m.input_tet_[(it + 2)->code / 4] + 1) + ")");
-          m.tet_adj_[it->code] = (it + 1)->code;
-          m.tet_adj_[(it + 1)->code] = it->code;
+      auto add_face = [&](std::uint32_t t, int i) {
+        const auto& tv = m.tets_[t];
+        std::uint32_t a = tv[kTetFace[i][0]].idx, b = tv[kTetFace[i][1]].idx, c = tv[kTetFace[i][2]].idx;
+        if (a > b) std::swap(a, b);
+        if (b > c) std::swap(b, c);
+        if (a > b) std::swap(a, b);  // a == v, b = mid, c = max
+        const std::uint32_t code = 4 * t + std::uint32_t(i), self = std::uint32_t(recs.size());
+        if (stamp[b] != vv) { stamp[b] = vv; head[b] = kEnd; }
+        std::uint32_t j = head[b];
+        while (j != kEnd && recs[j].max != c) j = recs[j].next;
+        recs.push_back({c, code, head[b], false});
+        head[b] = self;
+        if (j == kEnd) { ++num_tris; return; }
+        FaceRec& other = recs[j];
+        const std::uint32_t t1 = other.code / 4, i1 = other.code % 4;
+        if (other.paired) {
+          const std::uint32_t t2 = m.tet_adj_[other.code] / 4;
+          throw InputError(m.source_, tet_place(std::min({t, t1, t2})),
+                           "non-conformal mesh: triangle (" + vnum(a) + ", " + vnum(b) + ", " + vnum(c) +
+                               ") is shared by more than two tets (" + std::to_string(m.input_tet_[t1] + 1) + ", " +
+                               std::to_string(m.input_tet_[t2] + 1) + ", " + std::to_string(m.input_tet_[t] + 1) + ")");
         }
-        it = jt;
+        if (m.tets_[t1][i1] == tv[i])
+          throw InputError(m.source_, tet_place(std::max(t, t1)),
+                           "duplicated tet (same four vertices as " + tet_place(std::min(t, t1)) + ")");
+        other.paired = recs.back().paired = true;
+        m.tet_adj_[other.code] = code;
+        m.tet_adj_[code] = other.code;
+      };
+      for (std::uint32_t k = boff[0][v]; k < boff[0][v + 1]; ++k) {
+        const std::uint32_t t = bucket[0][k];
+        const int low = sorted[t] & 3;
+        for (int i = 0; i < 4; ++i)
+          if (i != low) add_face(t, i);
       }
+      for (std::uint32_t k = boff[1][v]; k < boff[1][v + 1]; ++k) add_face(bucket[1][k], sorted[bucket[1][k]] & 3);
     }
   }
   // Triangles, numbered in the order (tet, local face) of their first tet.
@@ -238,10 +237,10 @@ ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector
       if (across != kNoNeighbour) m.tet_tri_[across] = f;
     }
   }
-  // Edges, numbered in the order of their first (tet, local edge): an
-  // unnumbered tet edge gets the next id, and a walk around its ring through
-  // the face adjacency (both ways when the ring is open) gives every tet of
-  // the ring the same id. Each tet edge is visited once.
+  // Edges, numbered by (lower vertex v, higher vertex w): for each v, the tet
+  // edges whose lower vertex is v (buckets 0..2); their distinct w (a marker
+  // per vertex), sorted, get consecutive ids. An edge's stored tet is the tet
+  // of its first record.
   {
     static constexpr auto kEdgeOf = [] {  // local edge joining local vertices i and j
       std::array<std::array<std::int8_t, 4>, 4> e{};
@@ -251,36 +250,45 @@ ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector
       }
       return e;
     }();
-    m.tet_edge_.assign(6 * nt, EdgeId::invalid());
+    std::vector<std::uint32_t> mark(nv, std::uint32_t(-1)), slot(nv, 0);
+    struct Nb { std::uint32_t w, tet; };
+    std::vector<Nb> nbs;
+    m.tet_edge_.resize(6 * nt);
     // Euler's relation for a ball: E = V + T + (boundary triangles)/2 - 1.
     const std::size_t ne_guess = nv + nt + (2 * num_tris - 4 * nt) / 2 + 16;
     m.edge_verts_.reserve(ne_guess);
     m.edge_tet_.reserve(ne_guess);
-    for (std::size_t t = 0; t < nt; ++t) {
-      for (int k = 0; k < 6; ++k) {
-        if (m.tet_edge_[6 * t + k].valid()) continue;
-        const EdgeId e(m.edge_verts_.size());
-        const VertexId a = m.tets_[t][kTetEdge[k][0]], b = m.tets_[t][kTetEdge[k][1]];
-        m.edge_verts_.push_back({std::min(a, b), std::max(a, b)});
-        m.edge_tet_.push_back(TetId(t));
-        m.tet_edge_[6 * t + k] = e;
-        // Walk across the face after (side 0) or before (side 1) each tet.
-        for (int side = 0; side < 2; ++side) {
-          int ia = kTetEdge[k][0], ib = kTetEdge[k][1];
-          std::uint32_t cur = std::uint32_t(t);
-          for (;;) {
-            const int exit = side == 0 ? kRing.c[ia][ib] : kRing.d[ia][ib];
-            const std::uint32_t code = m.tet_adj_[4 * cur + exit];
-            if (code == kNoNeighbour) break;
-            cur = code >> 2;
-            if (cur == t) { side = 2; break; }  // closed ring: done both ways
-            const auto& sv = m.tets_[cur];
-            ia = sv[0] == a ? 0 : sv[1] == a ? 1 : sv[2] == a ? 2 : 3;
-            ib = sv[0] == b ? 0 : sv[1] == b ? 1 : sv[2] == b ? 2 : 3;
-            m.tet_edge_[6 * cur + kEdgeOf[ia][ib]] = e;
-          }
+    // Calls f(t, local index of v, local index of w) for each tet edge (v, w > v).
+    auto for_each_upper = [&](std::uint32_t v, auto&& f) {
+      for (int r = 0; r < 3; ++r)
+        for (std::uint32_t k = boff[r][v]; k < boff[r][v + 1]; ++k) {
+          const std::uint32_t t = bucket[r][k];
+          const int o = sorted[t];
+          for (int q = r + 1; q < 4; ++q) f(t, (o >> (2 * r)) & 3, (o >> (2 * q)) & 3);
         }
+    };
+    for (std::size_t v = 0; v < nv; ++v) {
+      const std::uint32_t vv = std::uint32_t(v);
+      nbs.clear();
+      for_each_upper(vv, [&](std::uint32_t t, int, int iw) {
+        const std::uint32_t w = m.tets_[t][iw].idx;
+        if (mark[w] != vv) { mark[w] = vv; nbs.push_back({w, t}); }
+      });
+      for (std::size_t i = 1; i < nbs.size(); ++i) {
+        const Nb r = nbs[i];
+        std::size_t j = i;
+        for (; j > 0 && r.w < nbs[j - 1].w; --j) nbs[j] = nbs[j - 1];
+        nbs[j] = r;
       }
+      const std::uint32_t base = std::uint32_t(m.edge_verts_.size());
+      for (std::size_t r = 0; r < nbs.size(); ++r) {
+        m.edge_verts_.push_back({VertexId(v), VertexId(nbs[r].w)});
+        m.edge_tet_.push_back(TetId(nbs[r].tet));
+        slot[nbs[r].w] = base + std::uint32_t(r);
+      }
+      for_each_upper(vv, [&](std::uint32_t t, int iv, int iw) {
+        m.tet_edge_[6 * t + kEdgeOf[iv][iw]] = EdgeId(slot[m.tets_[t][iw].idx]);
+      });
     }
   }
   m.vertex_class_.assign(nv, ModelRef{});
