@@ -15,20 +15,16 @@ bool in_closed_tet(const Point3& p, const Point3& a, const Point3& b, const Poin
 }  // namespace
 
 CentralPoint tet_central_point(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
-  const Vec3 u = b - a, v = c - a, w = d - a;
-  const double D = dot(u, cross(v, w));
-  // c - a = (|u|^2 (v x w) + |v|^2 (w x u) + |w|^2 (u x v)) / (2D)   (rounded)
-  const Vec3 num = norm2(u) * cross(v, w) + norm2(v) * cross(w, u) + norm2(w) * cross(u, v);
-  const Point3 cc = a + num / (2.0 * D);
+  // c - a = (|u|^2 (v x w) + |v|^2 (w x u) + |w|^2 (u x v)) / (2D), u = b - a, ...
+  // (rounded), the exact well-centred signs and the barycentric coordinates
+  // in doubles, all from the same products.
   Sign s[4];
-  circumcenter_barycentric_signs(a, b, c, d, s);
+  double lam[4];
+  const Point3 cc = circumcenter_with_signs(a, b, c, d, s, lam);
   if (s[0] != Sign::Negative && s[1] != Sign::Negative && s[2] != Sign::Negative &&
       s[3] != Sign::Negative)
     return {cc, true};
-  // Barycentric coordinates of the circumcenter (doubles): lambda_i = volume
-  // with vertex i replaced by cc, over D.
-  const double lam[4] = {dot(b - cc, cross(c - cc, d - cc)) / D, dot(cc - a, cross(v, w)) / D,
-                         dot(u, cross(cc - a, w)) / D, dot(u, cross(v, cc - a)) / D};
+  const Vec3 u = b - a, v = c - a, w = d - a;
   // Largest t in [0,1] with centroid + t (cc - centroid) in the tet: for each
   // negative lambda_i, 1/4 + t (lambda_i - 1/4) >= 0.
   double t = 1.0;

@@ -59,19 +59,24 @@ CleanupResult cleanup_dual(PolyMesh& pm, const std::vector<std::pair<PointId, Po
   pm.face_neighbour.resize(out_f);
   pm.face_kind.resize(out_f);
   pm.face_tag.resize(out_f);
-  // Compact the used points, keeping their order.
-  std::vector<PointId> new_id(np, PointId::invalid());
-  std::size_t k = 0;
-  for (std::size_t p = 0; p < np; ++p) {
+  // Compact the used points, keeping their order: points before the first
+  // unused one keep their ids (often all of them: then nothing moves).
+  std::size_t first_unused = 0;
+  while (first_unused < np && used[first_unused]) ++first_unused;
+  if (first_unused == np) return res;
+  std::vector<PointId> new_id(np - first_unused, PointId::invalid());
+  std::size_t k = first_unused;
+  for (std::size_t p = first_unused; p < np; ++p) {
     if (!used[p]) continue;
-    new_id[p] = PointId(k);
+    new_id[p - first_unused] = PointId(k);
     pm.points[k] = pm.points[p];
     pm.point_class[k] = pm.point_class[p];
     ++k;
   }
   pm.points.resize(k);
   pm.point_class.resize(k);
-  for (PointId& p : pm.face_points) p = new_id[p.idx];
+  for (PointId& p : pm.face_points)
+    if (p.idx >= first_unused) p = new_id[p.idx - first_unused];
   pm.points.shrink_to_fit();
   pm.point_class.shrink_to_fit();
   return res;

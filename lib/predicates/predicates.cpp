@@ -130,7 +130,14 @@ Sign insphere(const Point3& a, const Point3& b, const Point3& c, const Point3& d
 
 void circumcenter_barycentric_signs(const Point3& a, const Point3& b, const Point3& c,
                                     const Point3& d, Sign out[4]) {
+  double lambda[4];
+  (void)circumcenter_with_signs(a, b, c, d, out, lambda);
+}
+
+Point3 circumcenter_with_signs(const Point3& a, const Point3& b, const Point3& c, const Point3& d, Sign out[4],
+                               double lambda[4]) {
   auto& cnt = predicate_counters();
+  Point3 center;
   // Orientation-preserving orders that bring each vertex to slot 1 of
   // circ_bary_numerator: a -> (b,a,d,c), b -> (a,b,c,d), c -> (a,c,d,b), d -> (a,d,b,c).
   const Point3* p[4] = {&a, &b, &c, &d};
@@ -159,6 +166,12 @@ void circumcenter_barycentric_signs(const Point3& a, const Point3& b, const Poin
     mag[2] = nv * dot(awu, awu) + nw * dot(auv, awu) + nu * dot(avw, awu);
     val[3] = nw * dot(uv, uv) + nu * dot(vw, uv) + nv * dot(wu, uv);
     mag[3] = nw * dot(auv, auv) + nu * dot(avw, auv) + nv * dot(awu, auv);
+    // Doubles only (not decisions): c - a = n / (2D), lambda_i = val_i / (2 D^2).
+    const double D = dot(u, vw);
+    center = a + (nu * vw + nv * wu + nw * uv) / (2.0 * D);
+    const double inv = 1.0 / (2.0 * D * D);
+    for (int i = 1; i < 4; ++i) lambda[i] = val[i] * inv;
+    lambda[0] = 1.0 - lambda[1] - lambda[2] - lambda[3];
   }
   {
     const Vec3 u = a - b, v = d - b, w = c - b;  // order (b, a, d, c)
@@ -183,6 +196,7 @@ void circumcenter_barycentric_signs(const Point3& a, const Point3& b, const Poin
         },
         cnt.circ_exact);
   }
+  return center;
 }
 
 void triangle_circumcenter_barycentric_signs(const Point3& a, const Point3& b, const Point3& c,

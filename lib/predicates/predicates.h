@@ -29,6 +29,12 @@ Sign insphere(const Point3& a, const Point3& b, const Point3& c, const Point3& d
 void circumcenter_barycentric_signs(const Point3& a, const Point3& b, const Point3& c,
                                     const Point3& d, Sign out[4]);
 
+// The same signs (EXACT), plus what tet_central_point needs in doubles from
+// the same products: the rounded circumcenter (returned) and approximations of
+// the four barycentric coordinates (lambda, summing to 1; NOT exact).
+Point3 circumcenter_with_signs(const Point3& a, const Point3& b, const Point3& c, const Point3& d, Sign out[4],
+                               double lambda[4]);
+
 // Same for a non-degenerate triangle (in its own plane): out[i] is the sign of
 // the circumcenter's barycentric coordinate at vertex i, i.e. of the dot product
 // of the two edge vectors leaving vertex i (acute, right or obtuse angle).
