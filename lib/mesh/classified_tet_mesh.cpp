@@ -151,21 +151,29 @@ ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector
   std::vector<std::uint8_t> sorted(nt);
   std::array<std::vector<std::uint32_t>, 3> boff, bucket;
   {
+    for (int r = 0; r < 3; ++r) boff[r].assign(nv + 1, 0);
     for (std::size_t t = 0; t < nt; ++t) {
+      // Sorting network on (vertex id, local index) pairs packed in 64 bits.
       const auto& tv = m.tets_[t];
-      int o[4] = {0, 1, 2, 3};
-      for (int i = 1; i < 4; ++i)
-        for (int j = i; j > 0 && tv[o[j]].idx < tv[o[j - 1]].idx; --j) std::swap(o[j], o[j - 1]);
-      sorted[t] = std::uint8_t(o[0] | o[1] << 2 | o[2] << 4 | o[3] << 6);
+      std::uint64_t k[4];
+      for (int i = 0; i < 4; ++i) k[i] = std::uint64_t(tv[i].idx) << 2 | std::uint64_t(i);
+      auto cswap = [&](int i, int j) {
+        const std::uint64_t lo = std::min(k[i], k[j]), hi = std::max(k[i], k[j]);
+        k[i] = lo;
+        k[j] = hi;
+      };
+      cswap(0, 1); cswap(2, 3); cswap(0, 2); cswap(1, 3); cswap(1, 2);
+      sorted[t] = std::uint8_t((k[0] & 3) | (k[1] & 3) << 2 | (k[2] & 3) << 4 | (k[3] & 3) << 6);
+      for (int r = 0; r < 3; ++r) ++boff[r][(k[r] >> 2) + 1];
     }
+    std::array<std::vector<std::uint32_t>, 3> fill;
     for (int r = 0; r < 3; ++r) {
-      boff[r].assign(nv + 1, 0);
-      for (std::size_t t = 0; t < nt; ++t) ++boff[r][m.tets_[t][(sorted[t] >> (2 * r)) & 3].idx + 1];
       std::partial_sum(boff[r].begin(), boff[r].end(), boff[r].begin());
       bucket[r].resize(nt);
-      std::vector<std::uint32_t> fill(boff[r].begin(), boff[r].end() - 1);
-      for (std::size_t t = 0; t < nt; ++t) bucket[r][fill[m.tets_[t][(sorted[t] >> (2 * r)) & 3].idx]++] = std::uint32_t(t);
+      fill[r].assign(boff[r].begin(), boff[r].end() - 1);
     }
+    for (std::size_t t = 0; t < nt; ++t)
+      for (int r = 0; r < 3; ++r) bucket[r][fill[r][m.tets_[t][(sorted[t] >> (2 * r)) & 3].idx]++] = std::uint32_t(t);
   }
 
   // Face adjacency: for each vertex v, the faces whose smallest vertex is v
