@@ -91,18 +91,29 @@ Compacted validate_and_compact(const TetSoup& s, ClassifyStats& st) {
     c.remap[v] = std::uint32_t(k);
     c.points[k] = s.points[v];
   }
-  std::vector<std::array<VertexId, 4>> tets(s.tets.size());
-  for (std::size_t t = 0; t < s.tets.size(); ++t) {
+  // Tets by their smallest new vertex id: a stable counting sort straight from
+  // the soup (no intermediate renumbered copy).
+  const std::size_t nt = s.tets.size();
+  auto renumbered = [&](std::size_t t) {
     const auto& tv = s.tets[t];
-    tets[t] = {VertexId(c.remap[tv[0]]), VertexId(c.remap[tv[1]]), VertexId(c.remap[tv[2]]),
-               VertexId(c.remap[tv[3]])};
-  }
-  c.input_tet = order_by_smallest_vertex(tets, c.points.size());
-  c.tets.resize(tets.size());
-  c.regions.resize(tets.size());
-  for (std::size_t k = 0; k < tets.size(); ++k) {
-    c.tets[k] = tets[c.input_tet[k]];
-    c.regions[k] = s.tet_region[c.input_tet[k]];
+    return std::array<VertexId, 4>{VertexId(c.remap[tv[0]]), VertexId(c.remap[tv[1]]), VertexId(c.remap[tv[2]]),
+                                   VertexId(c.remap[tv[3]])};
+  };
+  auto lowest = [](const std::array<VertexId, 4>& r) {
+    return std::min(std::min(r[0].idx, r[1].idx), std::min(r[2].idx, r[3].idx));
+  };
+  std::vector<std::uint32_t> off(c.points.size() + 1, 0);
+  for (std::size_t t = 0; t < nt; ++t) ++off[lowest(renumbered(t)) + 1];
+  std::partial_sum(off.begin(), off.end(), off.begin());
+  c.tets.resize(nt);
+  c.regions.resize(nt);
+  c.input_tet.resize(nt);
+  for (std::size_t t = 0; t < nt; ++t) {
+    const std::array<VertexId, 4> r = renumbered(t);
+    const std::uint32_t k = off[lowest(r)]++;
+    c.tets[k] = r;
+    c.regions[k] = s.tet_region[t];
+    c.input_tet[k] = std::uint32_t(t);
   }
   st.seconds_order = std::chrono::duration<double>(Clock::now() - t1).count();
   // EXACT: the orientation of every tet, checked in the new (cache-friendly)

@@ -44,17 +44,4 @@ std::vector<std::uint32_t> morton_order(const std::vector<Point3>& points) {
   return order;
 }
 
-std::vector<std::uint32_t> order_by_smallest_vertex(const std::vector<std::array<VertexId, 4>>& tets,
-                                                    std::size_t num_vertices) {
-  std::vector<std::uint32_t> off(num_vertices + 1, 0);
-  auto lowest = [](const std::array<VertexId, 4>& t) {
-    return std::min(std::min(t[0].idx, t[1].idx), std::min(t[2].idx, t[3].idx));
-  };
-  for (const auto& t : tets) ++off[lowest(t) + 1];
-  std::partial_sum(off.begin(), off.end(), off.begin());
-  std::vector<std::uint32_t> order(tets.size());
-  for (std::size_t t = 0; t < tets.size(); ++t) order[off[lowest(tets[t])]++] = std::uint32_t(t);
-  return order;
-}
-
 }  // namespace polydual

@@ -2,8 +2,9 @@
 // size). Every later stage walks adjacency (edge rings, stars, face pairs); in
 // the order mesh generators write their files, neighbours sit far apart in
 // memory and those walks are cache misses. classify() therefore numbers
-// vertices along a Morton (Z-order) curve and tets by their smallest vertex;
-// the ClassifiedTetMesh keeps the maps back to the input numbering.
+// vertices along a Morton (Z-order) curve (here) and tets by their smallest
+// vertex (a counting sort in classify()); the ClassifiedTetMesh keeps the maps
+// back to the input numbering.
 //
 // Purely combinatorial on rounded keys: the order never decides geometry, and
 // it is deterministic (ties broken by input index).
@@ -20,10 +21,5 @@ namespace polydual {
 // order[k] = index of the point that comes k-th along the Morton curve of the
 // points' bounding box (21 bits per axis).
 std::vector<std::uint32_t> morton_order(const std::vector<Point3>& points);
-
-// order[k] = index of the tet that comes k-th when tets are sorted by their
-// smallest vertex index (stable counting sort).
-std::vector<std::uint32_t> order_by_smallest_vertex(const std::vector<std::array<VertexId, 4>>& tets,
-                                                    std::size_t num_vertices);
 
 }  // namespace polydual
