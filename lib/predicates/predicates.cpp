@@ -45,6 +45,17 @@ NT circ_bary_numerator(const Point3& p0, const Point3& p1, const Point3& p2, con
   return dot3(u, u) * dot3(vw, vw) + dot3(v, v) * dot3(wu, vw) + dot3(w, w) * dot3(uv, vw);
 }
 
+// Stage-A static filter of a determinant evaluated in doubles: the sign of
+// -det when |det| exceeds bound_factor * perm and perm lies in (tiny, 1/tiny)
+// (outside it underflow or overflow could spoil the bound); Zero = undecided.
+inline Sign negated_if_certain(double det, double perm, double bound_factor, double tiny) {
+  if (!(perm > tiny && perm < 1.0 / tiny)) return Sign::Zero;
+  const double bound = bound_factor * perm;
+  if (det > bound) return Sign::Negative;
+  if (det < -bound) return Sign::Positive;
+  return Sign::Zero;
+}
+
 template <class F>
 Sign filtered_sign(F&& f, std::atomic<std::uint64_t>& exact_counter) {
   {
@@ -80,12 +91,7 @@ Sign orient3d(const Point3& a, const Point3& b, const Point3& c, const Point3& d
                       (std::fabs(cdxady) + std::fabs(adxcdy)) * std::fabs(bdz) +
                       (std::fabs(adxbdy) + std::fabs(bdxady)) * std::fabs(cdz);
   constexpr double eps = DBL_EPSILON / 2;
-  constexpr double kBoundA = (7.0 + 56.0 * eps) * eps;
-  if (perm > 1e-250 && perm < 1e250) {
-    const double bound = kBoundA * perm;
-    if (det > bound) return Sign::Negative;
-    if (det < -bound) return Sign::Positive;
-  }
+  if (const Sign s = negated_if_certain(det, perm, (7.0 + 56.0 * eps) * eps, 1e-250); s != Sign::Zero) return s;
   // CGAL's orientation(p,q,r,s) is the sign of det[q-p, r-p, s-p] (filtered, exact).
   return to_sign(static_cast<int>(CGAL::orientation(kp(a), kp(b), kp(c), kp(d))));
 }
@@ -118,12 +124,7 @@ Sign insphere(const Point3& a, const Point3& b, const Point3& c, const Point3& d
   const double perm = (cdp * bezp + bdp * cezp + bcp * dezp) * alift + (dap * cezp + acp * dezp + cdp * aezp) * blift +
                       (abp * dezp + bdp * aezp + dap * bezp) * clift + (bcp * aezp + acp * bezp + abp * cezp) * dlift;
   constexpr double eps = DBL_EPSILON / 2;
-  constexpr double kBoundA = (16.0 + 224.0 * eps) * eps;
-  if (perm > 1e-200 && perm < 1e200) {
-    const double bound = kBoundA * perm;
-    if (det > bound) return Sign::Negative;
-    if (det < -bound) return Sign::Positive;
-  }
+  if (const Sign s = negated_if_certain(det, perm, (16.0 + 224.0 * eps) * eps, 1e-200); s != Sign::Zero) return s;
   // side_of_oriented_sphere: ON_POSITIVE_SIDE means inside for positive tets.
   return to_sign(static_cast<int>(CGAL::side_of_oriented_sphere(kp(a), kp(b), kp(c), kp(d), kp(e))));
 }
