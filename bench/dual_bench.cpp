@@ -16,6 +16,7 @@
 //  - Star*: the star test's decomposition tets, exact (filtered) vs plain
 //    doubles, ns per tet and the share that reached the exact path.
 #include <benchmark/benchmark.h>
+#include <malloc.h>
 #include <tbb/global_control.h>
 
 #include <algorithm>
@@ -100,6 +101,10 @@ void classify_dual_counters(benchmark::State& st, const TetSoup& soup) {
   double best_total = 1e300;
   for (auto _ : st) {
     st.PauseTiming();
+    // Return the freed memory first (the polydual executable keeps it, see
+    // lib/alloc/huge_pages.cpp): each run starts from fresh pages, as a
+    // conversion does, and reused blocks cannot hide from the peak.
+    malloc_trim(0);
     const long base = status_kb("VmRSS:");
     reset_peak();
     st.ResumeTiming();
@@ -108,7 +113,6 @@ void classify_dual_counters(benchmark::State& st, const TetSoup& soup) {
     ClassifiedTetMesh m = classify(soup, {}, &cs);
     PolyMesh pm = build_dual(m, {}, &ds);
     st.PauseTiming();
-    // glibc keeps freed blocks, so later iterations may reuse them: keep the max.
     bytes_per_tet = std::max(bytes_per_tet, double(status_kb("VmHWM:") - base) * 1024.0 / double(soup.tets.size()));
     cells = pm.num_cells();
     const double total = cs.seconds_validate + cs.seconds_order + cs.seconds_topology + cs.seconds_classification +

@@ -17,6 +17,27 @@ inline void ring_others(int ia, int ib, int& ic, int& id) {
   id = kRing.d[ia][ib];
 }
 
+// A third tet on one triangle (the half-face `code` = 4t + i meets a face
+// already paired), or two tets with the same four vertices. Out of line so the
+// matching loop stays small.
+[[noreturn, gnu::cold, gnu::noinline]] void throw_face_error(const ClassifiedTetMesh& m, std::uint32_t code,
+                                                             std::uint32_t other_code, bool other_paired) {
+  const std::uint32_t t = code / 4, t1 = other_code / 4;
+  auto tet_place = [&](std::uint32_t x) { return "tet " + std::to_string(m.input_tet(TetId(x)) + 1); };
+  if (!other_paired)
+    throw InputError(m.source(), tet_place(std::max(t, t1)),
+                     "duplicated tet (same four vertices as " + tet_place(std::min(t, t1)) + ")");
+  const auto& tv = m.tet(TetId(t));
+  std::uint32_t v[3] = {tv[kTetFace[code % 4][0]].idx, tv[kTetFace[code % 4][1]].idx, tv[kTetFace[code % 4][2]].idx};
+  std::sort(v, v + 3);
+  auto vnum = [&](std::uint32_t x) { return std::to_string(m.input_vertex(VertexId(x)) + 1); };
+  const std::uint32_t t2 = m.tet_neighbor(TetId(t1), int(other_code % 4)).idx;
+  throw InputError(m.source(), tet_place(std::min({t, t1, t2})),
+                   "non-conformal mesh: triangle (" + vnum(v[0]) + ", " + vnum(v[1]) + ", " + vnum(v[2]) +
+                       ") is shared by more than two tets (" + std::to_string(m.input_tet(TetId(t1)) + 1) + ", " +
+                       std::to_string(m.input_tet(TetId(t2)) + 1) + ", " + std::to_string(m.input_tet(TetId(t)) + 1) + ")");
+}
+
 }  // namespace
 
 const ModelEntity* ModelTopology::find(int dim, std::int32_t tag) const {
@@ -126,8 +147,6 @@ ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector
     std::iota(m.input_tet_.begin(), m.input_tet_.end(), 0u);
   }
   constexpr std::uint32_t kNoNeighbour = ClassifiedTetMesh::kNoNeighbour;
-  auto tet_place = [&](std::size_t t) { return "tet " + std::to_string(m.input_tet_[t] + 1); };
-  auto vnum = [&](std::size_t v) { return std::to_string(m.input_vertex_[v] + 1); };
 
   // Vertex stars (CSR, tets in increasing order).
   m.vstar_off_.assign(nv + 1, 0);
@@ -186,38 +205,31 @@ ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector
   std::size_t num_tris = 0;
   {
     constexpr std::uint32_t kEnd = 0xffffffffu;
-    struct FaceRec { std::uint32_t max, code, next; bool paired; };  // code = 4t + i
+    struct FaceRec { std::uint32_t max, code, next, paired; };  // code = 4t + i
     std::vector<FaceRec> recs;
     std::vector<std::uint32_t> stamp(nv, kEnd), head(nv, kEnd);
     for (std::size_t v = 0; v < nv; ++v) {
       const std::uint32_t vv = std::uint32_t(v);
-      recs.clear();
+      const std::size_t n_here = 3 * std::size_t(boff[0][v + 1] - boff[0][v]) + (boff[1][v + 1] - boff[1][v]);
+      if (recs.size() < n_here) recs.resize(n_here);
+      std::uint32_t n_recs = 0;
       auto add_face = [&](std::uint32_t t, int i) {
         const auto& tv = m.tets_[t];
         std::uint32_t a = tv[kTetFace[i][0]].idx, b = tv[kTetFace[i][1]].idx, c = tv[kTetFace[i][2]].idx;
         if (a > b) std::swap(a, b);
         if (b > c) std::swap(b, c);
         if (a > b) std::swap(a, b);  // a == v, b = mid, c = max
-        const std::uint32_t code = 4 * t + std::uint32_t(i), self = std::uint32_t(recs.size());
+        const std::uint32_t code = 4 * t + std::uint32_t(i), self = n_recs++;
         if (stamp[b] != vv) { stamp[b] = vv; head[b] = kEnd; }
         std::uint32_t j = head[b];
         while (j != kEnd && recs[j].max != c) j = recs[j].next;
-        recs.push_back({c, code, head[b], false});
+        recs[self] = {c, code, head[b], 0};
         head[b] = self;
         if (j == kEnd) { ++num_tris; return; }
         FaceRec& other = recs[j];
-        const std::uint32_t t1 = other.code / 4, i1 = other.code % 4;
-        if (other.paired) {
-          const std::uint32_t t2 = m.tet_adj_[other.code] / 4;
-          throw InputError(m.source_, tet_place(std::min({t, t1, t2})),
-                           "non-conformal mesh: triangle (" + vnum(a) + ", " + vnum(b) + ", " + vnum(c) +
-                               ") is shared by more than two tets (" + std::to_string(m.input_tet_[t1] + 1) + ", " +
-                               std::to_string(m.input_tet_[t2] + 1) + ", " + std::to_string(m.input_tet_[t] + 1) + ")");
-        }
-        if (m.tets_[t1][i1] == tv[i])
-          throw InputError(m.source_, tet_place(std::max(t, t1)),
-                           "duplicated tet (same four vertices as " + tet_place(std::min(t, t1)) + ")");
-        other.paired = recs.back().paired = true;
+        if (other.paired || m.tets_[other.code / 4][other.code % 4] == tv[i]) [[unlikely]]
+          throw_face_error(m, code, other.code, other.paired != 0);
+        other.paired = recs[self].paired = 1;
         m.tet_adj_[other.code] = code;
         m.tet_adj_[code] = other.code;
       };
