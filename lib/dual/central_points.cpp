@@ -36,12 +36,13 @@ CentralPoint tet_central_point(const Point3& a, const Point3& b, const Point3& c
   t *= 1.0 - 0x1p-20;
   const Point3 g = a + 0.25 * (u + v + w);
   Point3 p = g + t * (cc - g);
-  for (int iter = 0; iter < 64 && !in_closed_tet(p, a, b, c, d); ++iter) {
+  for (int iter = 0; iter < 64; ++iter) {
+    if (in_closed_tet(p, a, b, c, d)) return {p, false};
     t *= (iter < 32 ? 1.0 - 1e-12 * double(1ull << std::min(iter, 40)) : 0.5);
     p = g + t * (cc - g);
   }
-  if (!in_closed_tet(p, a, b, c, d)) p = g;  // the rounded centroid of a non-flat tet
-  return {p, false};
+  if (in_closed_tet(p, a, b, c, d)) return {p, false};
+  return {g, false};  // the rounded centroid of a non-flat tet
 }
 
 CentralPoint triangle_central_point(const Point3& a, const Point3& b, const Point3& c) {

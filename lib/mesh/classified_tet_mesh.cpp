@@ -8,8 +8,6 @@
 namespace polydual {
 
 namespace {
-// Outward-oriented local faces of a positive tet: face i is opposite vertex i.
-constexpr int kTetFace[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
 
 using detail::kRing;
 inline void ring_others(int ia, int ib, int& ic, int& id) {
@@ -74,8 +72,8 @@ void ClassifiedTetMesh::edge_ring(EdgeId e, std::vector<TetId>& tets, std::vecto
   // (a, b, id); a closed ring comes back to the start. An open ring hits the
   // boundary: then walk backwards from the start (across (a, b, ic)) and put
   // that part in front, so the ring starts at the boundary.
-  const VertexId a = edge_verts_[e.idx][0], b = edge_verts_[e.idx][1];
-  const TetId start = edge_tet_[e.idx];
+  const auto [a, b] = edge(e);
+  const TetId start = edge_tet(e);
   tets.clear();
   tris.clear();
   int ic, id;
@@ -109,7 +107,7 @@ void ClassifiedTetMesh::edge_ring(EdgeId e, std::vector<TetId>& tets, std::vecto
 }
 
 EdgeId ClassifiedTetMesh::triangle_edge(TriId f, VertexId a, VertexId b) const {
-  TetId t = tri_tets_[f.idx][0];
+  TetId t = triangle_tet(f, 0);
   int ia = local_index(t, a), ib = local_index(t, b);
   for (int k = 0; k < 6; ++k)
     if ((kTetEdge[k][0] == ia && kTetEdge[k][1] == ib) || (kTetEdge[k][0] == ib && kTetEdge[k][1] == ia))
@@ -134,8 +132,9 @@ ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector
   m.tets_ = std::move(tets);
   m.tet_region_ = std::move(regions);
   const std::size_t nv = m.points_.size(), nt = m.tets_.size();
-  if (nt >= (std::size_t(1) << 30))
-    throw InputError(m.source_, "", "more than 2^30 tets (" + std::to_string(nt) + ") are not supported");
+  // Local entities are coded as 4 * tet + face and 8 * tet + edge in 32 bits.
+  if (nt >= (std::size_t(1) << 29))
+    throw InputError(m.source_, "", "more than 2^29 tets (" + std::to_string(nt) + ") are not supported");
   m.input_vertex_ = std::move(input_vertex);
   m.input_tet_ = std::move(input_tet);
   if (m.input_vertex_.empty()) {
@@ -243,16 +242,13 @@ ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector
     }
   }
   // Triangles, numbered in the order (tet, local face) of their first tet.
-  m.tri_verts_.reserve(num_tris);
-  m.tri_tets_.reserve(num_tris);
+  m.tri_code_.reserve(num_tris);
   for (std::size_t t = 0; t < nt; ++t) {
     for (int i = 0; i < 4; ++i) {
       if (m.tet_tri_[4 * t + i].valid()) continue;
-      TriId f(m.tri_verts_.size());
-      const auto& tv = m.tets_[t];
-      m.tri_verts_.push_back({tv[kTetFace[i][0]], tv[kTetFace[i][1]], tv[kTetFace[i][2]]});
+      TriId f(m.tri_code_.size());
+      m.tri_code_.push_back(std::uint32_t(4 * t + i));
       const std::uint32_t across = m.tet_adj_[4 * t + i];
-      m.tri_tets_.push_back({TetId(t), across == kNoNeighbour ? TetId::invalid() : TetId(across / 4)});
       m.tet_tri_[4 * t + i] = f;
       if (across != kNoNeighbour) m.tet_tri_[across] = f;
     }
@@ -271,13 +267,12 @@ ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector
       return e;
     }();
     std::vector<std::uint32_t> mark(nv, std::uint32_t(-1)), slot(nv, 0);
-    struct Nb { std::uint32_t w, tet; };
+    struct Nb { std::uint32_t w, code; };  // code = 8 * tet + local edge
     std::vector<Nb> nbs;
     m.tet_edge_.resize(6 * nt);
     // Euler's relation for a ball: E = V + T + (boundary triangles)/2 - 1.
     const std::size_t ne_guess = nv + nt + (2 * num_tris - 4 * nt) / 2 + 16;
-    m.edge_verts_.reserve(ne_guess);
-    m.edge_tet_.reserve(ne_guess);
+    m.edge_code_.reserve(ne_guess);
     // Calls f(t, local index of v, local index of w) for each tet edge (v, w > v).
     auto for_each_upper = [&](std::uint32_t v, auto&& f) {
       for (int r = 0; r < 3; ++r)
@@ -290,9 +285,9 @@ ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector
     for (std::size_t v = 0; v < nv; ++v) {
       const std::uint32_t vv = std::uint32_t(v);
       nbs.clear();
-      for_each_upper(vv, [&](std::uint32_t t, int, int iw) {
+      for_each_upper(vv, [&](std::uint32_t t, int iv, int iw) {
         const std::uint32_t w = m.tets_[t][iw].idx;
-        if (mark[w] != vv) { mark[w] = vv; nbs.push_back({w, t}); }
+        if (mark[w] != vv) { mark[w] = vv; nbs.push_back({w, 8 * t + std::uint32_t(kEdgeOf[iv][iw])}); }
       });
       for (std::size_t i = 1; i < nbs.size(); ++i) {
         const Nb r = nbs[i];
@@ -300,10 +295,9 @@ ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector
         for (; j > 0 && r.w < nbs[j - 1].w; --j) nbs[j] = nbs[j - 1];
         nbs[j] = r;
       }
-      const std::uint32_t base = std::uint32_t(m.edge_verts_.size());
+      const std::uint32_t base = std::uint32_t(m.edge_code_.size());
       for (std::size_t r = 0; r < nbs.size(); ++r) {
-        m.edge_verts_.push_back({VertexId(v), VertexId(nbs[r].w)});
-        m.edge_tet_.push_back(TetId(nbs[r].tet));
+        m.edge_code_.push_back(nbs[r].code);
         slot[nbs[r].w] = base + std::uint32_t(r);
       }
       for_each_upper(vv, [&](std::uint32_t t, int iv, int iw) {
@@ -312,8 +306,8 @@ ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector
     }
   }
   m.vertex_class_.assign(nv, ModelRef{});
-  m.edge_class_.assign(m.edge_verts_.size(), ModelRef{});
-  m.tri_class_.assign(m.tri_verts_.size(), ModelRef{});
+  m.edge_class_.assign(m.edge_code_.size(), ModelRef{});
+  m.tri_class_.assign(m.tri_code_.size(), ModelRef{});
   return m;
 }
 

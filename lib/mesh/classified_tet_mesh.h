@@ -20,6 +20,9 @@
 namespace polydual {
 
 inline constexpr int kTetEdge[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+// Local face i (opposite local vertex i) of a positive tet, ordered so that its
+// right-hand normal points out of the tet.
+inline constexpr int kTetFace[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
 
 namespace detail {
 // For local indices ia, ib of an edge, the other two local indices (c, d) such
@@ -67,8 +70,8 @@ class ClassifiedTetMesh {
   // --- sizes
   std::size_t num_vertices() const { return points_.size(); }
   std::size_t num_tets() const { return tets_.size(); }
-  std::size_t num_triangles() const { return tri_tets_.size(); }
-  std::size_t num_edges() const { return edge_verts_.size(); }
+  std::size_t num_triangles() const { return tri_code_.size(); }
+  std::size_t num_edges() const { return edge_code_.size(); }
 
   // --- geometry and connectivity
   const std::string& source() const { return source_; }
@@ -90,12 +93,28 @@ class ClassifiedTetMesh {
   EdgeId tet_edge(TetId t, int k) const { return tet_edge_[6 * t.idx + k]; }
   // The triangle's vertices, oriented so its right-hand normal points out of
   // triangle_tet(f, 0).
-  const std::array<VertexId, 3>& triangle(TriId f) const { return tri_verts_[f.idx]; }
+  std::array<VertexId, 3> triangle(TriId f) const {
+    const std::uint32_t c = tri_code_[f.idx];
+    const auto& tv = tets_[c >> 2];
+    const int* o = kTetFace[c & 3];
+    return {tv[o[0]], tv[o[1]], tv[o[2]]};
+  }
   // The one or two tets of a triangle (side 1 invalid on the boundary).
-  TetId triangle_tet(TriId f, int side) const { return tri_tets_[f.idx][side]; }
-  const std::array<VertexId, 2>& edge(EdgeId e) const { return edge_verts_[e.idx]; }
+  TetId triangle_tet(TriId f, int side) const {
+    const std::uint32_t c = tri_code_[f.idx];
+    if (side == 0) return TetId(c >> 2);
+    const std::uint32_t a = tet_adj_[c];
+    return a == kNoNeighbour ? TetId::invalid() : TetId(a >> 2);
+  }
+  // The edge's vertices (a, b), a < b.
+  std::array<VertexId, 2> edge(EdgeId e) const {
+    const std::uint32_t c = edge_code_[e.idx];
+    const auto& tv = tets_[c >> 3];
+    const VertexId p = tv[kTetEdge[c & 7][0]], q = tv[kTetEdge[c & 7][1]];
+    return p < q ? std::array<VertexId, 2>{p, q} : std::array<VertexId, 2>{q, p};
+  }
   // One tet that has edge e.
-  TetId edge_tet(EdgeId e) const { return edge_tet_[e.idx]; }
+  TetId edge_tet(EdgeId e) const { return TetId(edge_code_[e.idx] >> 3); }
   // Tets around a vertex (its star), in increasing tet order.
   std::span<const TetId> vertex_tets(VertexId v) const {
     return {vstar_.data() + vstar_off_[v.idx], vstar_.data() + vstar_off_[v.idx + 1]};
@@ -112,8 +131,8 @@ class ClassifiedTetMesh {
   // classified in a region is), in edge_ring's order, without building the ring.
   template <class F>
   void for_each_closed_ring_tet(EdgeId e, F&& f) const {
-    const VertexId a = edge_verts_[e.idx][0], b = edge_verts_[e.idx][1];
-    const TetId start = edge_tet_[e.idx];
+    const auto [a, b] = edge(e);
+    const TetId start = edge_tet(e);
     TetId t = start;
     do {
       f(t);
@@ -159,10 +178,11 @@ class ClassifiedTetMesh {
   std::vector<std::uint32_t> tet_adj_;  // 4 per tet: 4 * neighbour + its local face, or kNoNeighbour
   std::vector<TriId> tet_tri_;   // 4 per tet
   std::vector<EdgeId> tet_edge_; // 6 per tet
-  std::vector<std::array<VertexId, 3>> tri_verts_;
-  std::vector<std::array<TetId, 2>> tri_tets_;
-  std::vector<std::array<VertexId, 2>> edge_verts_;  // (a,b) with a < b
-  std::vector<TetId> edge_tet_;                      // one tet per edge
+  // Triangles and edges are stored as one local entity of one of their tets:
+  // 4 * tet + local face (the triangle's first tet, which it points out of)
+  // and 8 * tet + local edge.
+  std::vector<std::uint32_t> tri_code_;
+  std::vector<std::uint32_t> edge_code_;
   std::vector<std::uint32_t> vstar_off_;
   std::vector<TetId> vstar_;
   std::vector<ModelRef> vertex_class_, edge_class_, tri_class_;

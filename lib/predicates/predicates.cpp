@@ -45,17 +45,6 @@ NT circ_bary_numerator(const Point3& p0, const Point3& p1, const Point3& p2, con
   return dot3(u, u) * dot3(vw, vw) + dot3(v, v) * dot3(wu, vw) + dot3(w, w) * dot3(uv, vw);
 }
 
-// Stage-A static filter of a determinant evaluated in doubles: the sign of
-// -det when |det| exceeds bound_factor * perm and perm lies in (tiny, 1/tiny)
-// (outside it underflow or overflow could spoil the bound); Zero = undecided.
-inline Sign negated_if_certain(double det, double perm, double bound_factor, double tiny) {
-  if (!(perm > tiny && perm < 1.0 / tiny)) return Sign::Zero;
-  const double bound = bound_factor * perm;
-  if (det > bound) return Sign::Negative;
-  if (det < -bound) return Sign::Positive;
-  return Sign::Zero;
-}
-
 template <class F>
 Sign filtered_sign(F&& f, std::atomic<std::uint64_t>& exact_counter) {
   {
@@ -75,59 +64,16 @@ PredicateCounters& predicate_counters() {
   return c;
 }
 
-Sign orient3d(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
-  // Semi-static filter (Shewchuk's orient3d stage A, errboundA = (7 + 56 eps) eps
-  // times the permanent), evaluated on differences to d: det[a-d, b-d, c-d] is
-  // -det[b-a, c-a, d-a]. Undecided (or tiny/non-finite magnitudes, where
-  // underflow could spoil the bound): CGAL's filtered exact predicate.
-  const double adx = a.x - d.x, bdx = b.x - d.x, cdx = c.x - d.x;
-  const double ady = a.y - d.y, bdy = b.y - d.y, cdy = c.y - d.y;
-  const double adz = a.z - d.z, bdz = b.z - d.z, cdz = c.z - d.z;
-  const double bdxcdy = bdx * cdy, cdxbdy = cdx * bdy;
-  const double cdxady = cdx * ady, adxcdy = adx * cdy;
-  const double adxbdy = adx * bdy, bdxady = bdx * ady;
-  const double det = adz * (bdxcdy - cdxbdy) + bdz * (cdxady - adxcdy) + cdz * (adxbdy - bdxady);
-  const double perm = (std::fabs(bdxcdy) + std::fabs(cdxbdy)) * std::fabs(adz) +
-                      (std::fabs(cdxady) + std::fabs(adxcdy)) * std::fabs(bdz) +
-                      (std::fabs(adxbdy) + std::fabs(bdxady)) * std::fabs(cdz);
-  constexpr double eps = DBL_EPSILON / 2;
-  if (const Sign s = negated_if_certain(det, perm, (7.0 + 56.0 * eps) * eps, 1e-250); s != Sign::Zero) return s;
+namespace detail {
+Sign orient3d_exact(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
   // CGAL's orientation(p,q,r,s) is the sign of det[q-p, r-p, s-p] (filtered, exact).
   return to_sign(static_cast<int>(CGAL::orientation(kp(a), kp(b), kp(c), kp(d))));
 }
-
-Sign insphere(const Point3& a, const Point3& b, const Point3& c, const Point3& d, const Point3& e) {
-  // Semi-static filter: Shewchuk's insphere stage A (errboundA = (16 + 224 eps)
-  // eps times the permanent) on differences to e. His determinant is positive
-  // for e inside when det[a-d, b-d, c-d] > 0, i.e. for tets that are negative in
-  // our convention, so our sign is the opposite of his. Undecided (or tiny or
-  // huge magnitudes): CGAL's filtered exact predicate.
-  const double aex = a.x - e.x, bex = b.x - e.x, cex = c.x - e.x, dex = d.x - e.x;
-  const double aey = a.y - e.y, bey = b.y - e.y, cey = c.y - e.y, dey = d.y - e.y;
-  const double aez = a.z - e.z, bez = b.z - e.z, cez = c.z - e.z, dez = d.z - e.z;
-  const double aexbey = aex * bey, bexaey = bex * aey, bexcey = bex * cey, cexbey = cex * bey;
-  const double cexdey = cex * dey, dexcey = dex * cey, dexaey = dex * aey, aexdey = aex * dey;
-  const double aexcey = aex * cey, cexaey = cex * aey, bexdey = bex * dey, dexbey = dex * bey;
-  const double ab = aexbey - bexaey, bc = bexcey - cexbey, cd = cexdey - dexcey, da = dexaey - aexdey;
-  const double ac = aexcey - cexaey, bd = bexdey - dexbey;
-  const double abc = aez * bc - bez * ac + cez * ab;
-  const double bcd = bez * cd - cez * bd + dez * bc;
-  const double cda = cez * da + dez * ac + aez * cd;
-  const double dab = dez * ab + aez * bd + bez * da;
-  const double alift = aex * aex + aey * aey + aez * aez, blift = bex * bex + bey * bey + bez * bez;
-  const double clift = cex * cex + cey * cey + cez * cez, dlift = dex * dex + dey * dey + dez * dez;
-  const double det = (dlift * abc - clift * dab) + (blift * cda - alift * bcd);
-  const double aezp = std::fabs(aez), bezp = std::fabs(bez), cezp = std::fabs(cez), dezp = std::fabs(dez);
-  const double abp = std::fabs(aexbey) + std::fabs(bexaey), bcp = std::fabs(bexcey) + std::fabs(cexbey);
-  const double cdp = std::fabs(cexdey) + std::fabs(dexcey), dap = std::fabs(dexaey) + std::fabs(aexdey);
-  const double acp = std::fabs(aexcey) + std::fabs(cexaey), bdp = std::fabs(bexdey) + std::fabs(dexbey);
-  const double perm = (cdp * bezp + bdp * cezp + bcp * dezp) * alift + (dap * cezp + acp * dezp + cdp * aezp) * blift +
-                      (abp * dezp + bdp * aezp + dap * bezp) * clift + (bcp * aezp + acp * bezp + abp * cezp) * dlift;
-  constexpr double eps = DBL_EPSILON / 2;
-  if (const Sign s = negated_if_certain(det, perm, (16.0 + 224.0 * eps) * eps, 1e-200); s != Sign::Zero) return s;
+Sign insphere_exact(const Point3& a, const Point3& b, const Point3& c, const Point3& d, const Point3& e) {
   // side_of_oriented_sphere: ON_POSITIVE_SIDE means inside for positive tets.
   return to_sign(static_cast<int>(CGAL::side_of_oriented_sphere(kp(a), kp(b), kp(c), kp(d), kp(e))));
 }
+}  // namespace detail
 
 void circumcenter_barycentric_signs(const Point3& a, const Point3& b, const Point3& c,
                                     const Point3& d, Sign out[4]) {

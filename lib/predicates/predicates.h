@@ -16,12 +16,12 @@ enum class Sign : int { Negative = -1, Zero = 0, Positive = 1 };
 
 // Sign of det[b-a, c-a, d-a]: Positive iff d lies on the side of plane (a,b,c)
 // that its right-hand normal points to (CGAL::orientation convention).
-Sign orient3d(const Point3& a, const Point3& b, const Point3& c, const Point3& d);
+inline Sign orient3d(const Point3& a, const Point3& b, const Point3& c, const Point3& d);
 
 // Sign of the insphere determinant of (a,b,c,d) against e, for a positive
 // tet (a,b,c,d): Positive iff e is strictly inside the circumsphere, Zero iff
 // cospherical.
-Sign insphere(const Point3& a, const Point3& b, const Point3& c, const Point3& d, const Point3& e);
+inline Sign insphere(const Point3& a, const Point3& b, const Point3& c, const Point3& d, const Point3& e);
 
 // Signs of the barycentric coordinates of the circumcenter of a positive tet
 // (a,b,c,d) with respect to its vertices, in that order. The closed tet
@@ -66,3 +66,5 @@ struct PredicateCounters {
 PredicateCounters& predicate_counters();
 
 }  // namespace polydual
+
+#include "predicates/predicates_inline.h"
