@@ -1,6 +1,7 @@
 #include "mesh/classified_tet_mesh.h"
 
 #include <algorithm>
+#include <bit>
 #include <numeric>
 
 #include "core/error.h"
@@ -175,10 +176,11 @@ ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector
       const auto& tv = m.tets_[t];
       std::uint64_t k[4];
       for (int i = 0; i < 4; ++i) k[i] = std::uint64_t(tv[i].idx) << 2 | std::uint64_t(i);
-      auto cswap = [&](int i, int j) {
-        const std::uint64_t lo = std::min(k[i], k[j]), hi = std::max(k[i], k[j]);
-        k[i] = lo;
-        k[j] = hi;
+      auto cswap = [&](int i, int j) {  // selects, not branches: the order is random
+        const std::uint64_t x = k[i], y = k[j];
+        const bool swap = y < x;
+        k[i] = swap ? y : x;
+        k[j] = swap ? x : y;
       };
       cswap(0, 1); cswap(2, 3); cswap(0, 2); cswap(1, 3); cswap(1, 2);
       sorted[t] = std::uint8_t((k[0] & 3) | (k[1] & 3) << 2 | (k[2] & 3) << 4 | (k[3] & 3) << 6);
@@ -195,64 +197,78 @@ ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector
   }
 
   // Face adjacency: for each vertex v, the faces whose smallest vertex is v
-  // (buckets 0 and 1), matched on their two other vertices (mid, max): faces
-  // with the same mid are chained from a head per vertex (stamped with v), so
-  // each face looks only at the few earlier faces sharing its mid. Two equal
-  // faces pair; a third is a non-conformity.
-  m.tet_adj_.assign(4 * nt, kNoNeighbour);
-  m.tet_tri_.assign(4 * nt, TriId::invalid());
+  // (buckets 0 and 1), matched on their two other vertices (mid, max) in a
+  // small open-addressing table (slots stamped with v, so nothing is cleared
+  // between vertices). The two other vertices come out ordered from sorted[t]:
+  // no comparisons. Whether a face is the first or the second of its pair is a
+  // coin toss to a branch predictor, so that decision is made with selects; the
+  // only branches are the probe loop (one step unless slots collide) and the
+  // never-taken error check. Two equal faces pair; a third is a non-conformity.
+  // One spare adjacency entry takes the writes of unpaired faces.
+  m.tet_adj_.assign(4 * nt + 1, kNoNeighbour);
+  const std::uint32_t sink = std::uint32_t(4 * nt);
   std::size_t num_tris = 0;
   {
-    constexpr std::uint32_t kEnd = 0xffffffffu;
-    struct FaceRec { std::uint32_t max, code, next, paired; };  // code = 4t + i
-    std::vector<FaceRec> recs;
-    std::vector<std::uint32_t> stamp(nv, kEnd), head(nv, kEnd);
+    struct Slot { std::uint64_t key; std::uint32_t code, tag; };  // tag = 2 * (v + 1) + paired
+    std::vector<Slot> table;
     for (std::size_t v = 0; v < nv; ++v) {
-      const std::uint32_t vv = std::uint32_t(v);
       const std::size_t n_here = 3 * std::size_t(boff[0][v + 1] - boff[0][v]) + (boff[1][v + 1] - boff[1][v]);
-      if (recs.size() < n_here) recs.resize(n_here);
-      std::uint32_t n_recs = 0;
-      auto add_face = [&](std::uint32_t t, int i) {
-        const auto& tv = m.tets_[t];
-        std::uint32_t a = tv[kTetFace[i][0]].idx, b = tv[kTetFace[i][1]].idx, c = tv[kTetFace[i][2]].idx;
-        if (a > b) std::swap(a, b);
-        if (b > c) std::swap(b, c);
-        if (a > b) std::swap(a, b);  // a == v, b = mid, c = max
-        const std::uint32_t code = 4 * t + std::uint32_t(i), self = n_recs++;
-        if (stamp[b] != vv) { stamp[b] = vv; head[b] = kEnd; }
-        std::uint32_t j = head[b];
-        while (j != kEnd && recs[j].max != c) j = recs[j].next;
-        recs[self] = {c, code, head[b], 0};
-        head[b] = self;
-        if (j == kEnd) { ++num_tris; return; }
-        FaceRec& other = recs[j];
-        if (other.paired || m.tets_[other.code / 4][other.code % 4] == tv[i]) [[unlikely]]
-          throw_face_error(m, code, other.code, other.paired != 0);
-        other.paired = recs[self].paired = 1;
-        m.tet_adj_[other.code] = code;
-        m.tet_adj_[code] = other.code;
+      // At most a quarter full: a probe rarely goes past its first slot.
+      const int bits = std::max(6, int(std::bit_width(4 * n_here - (n_here > 0))));
+      if (table.size() < (std::size_t(1) << bits)) table.assign(std::size_t(1) << bits, Slot{0, 0, 0});
+      const std::uint64_t mask = (std::uint64_t(1) << bits) - 1;
+      const std::uint32_t stamp = 2 * (std::uint32_t(v) + 1);
+      auto add_face = [&](std::uint32_t t, int i, std::uint32_t mid, std::uint32_t max) {
+        const std::uint64_t key = std::uint64_t(mid) << 32 | max;
+        std::uint64_t h = (key * 0x9E3779B97F4A7C15ull) >> (64 - bits);
+        // One branch per probe (`&`, not `&&`): whether the slot is taken is the coin toss.
+        while (((table[h].tag & ~1u) == stamp) & (table[h].key != key)) h = (h + 1) & mask;
+        Slot& sl = table[h];
+        const std::uint32_t code = 4 * t + std::uint32_t(i);
+        const bool found = (sl.tag & ~1u) == stamp;
+        const std::uint32_t other = sl.code;
+        if (found && ((sl.tag & 1u) || m.tets_[other >> 2][other & 3] == m.tets_[t][i])) [[unlikely]]
+          throw_face_error(m, code, other, (sl.tag & 1u) != 0);
+        sl.key = key;
+        sl.code = found ? other : code;
+        sl.tag = stamp | std::uint32_t(found);
+        m.tet_adj_[found ? other : sink] = code;
+        m.tet_adj_[found ? code : sink] = other;
+        num_tris += !found;
       };
       for (std::uint32_t k = boff[0][v]; k < boff[0][v + 1]; ++k) {
         const std::uint32_t t = bucket[0][k];
-        const int low = sorted[t] & 3;
-        for (int i = 0; i < 4; ++i)
-          if (i != low) add_face(t, i);
+        const int o = sorted[t], s1 = (o >> 2) & 3, s2 = (o >> 4) & 3, s3 = (o >> 6) & 3;
+        const auto& tv = m.tets_[t];
+        const std::uint32_t v1 = tv[s1].idx, v2 = tv[s2].idx, v3 = tv[s3].idx;
+        add_face(t, s1, v2, v3);
+        add_face(t, s2, v1, v3);
+        add_face(t, s3, v1, v2);
       }
-      for (std::uint32_t k = boff[1][v]; k < boff[1][v + 1]; ++k) add_face(bucket[1][k], sorted[bucket[1][k]] & 3);
+      for (std::uint32_t k = boff[1][v]; k < boff[1][v + 1]; ++k) {
+        const std::uint32_t t = bucket[1][k];
+        const int o = sorted[t];
+        add_face(t, o & 3, m.tets_[t][(o >> 4) & 3].idx, m.tets_[t][(o >> 6) & 3].idx);
+      }
     }
   }
-  // Triangles, numbered in the order (tet, local face) of their first tet.
-  m.tri_code_.reserve(num_tris);
-  for (std::size_t t = 0; t < nt; ++t) {
-    for (int i = 0; i < 4; ++i) {
-      if (m.tet_tri_[4 * t + i].valid()) continue;
-      TriId f(m.tri_code_.size());
-      m.tri_code_.push_back(std::uint32_t(4 * t + i));
-      const std::uint32_t across = m.tet_adj_[4 * t + i];
-      m.tet_tri_[4 * t + i] = f;
-      if (across != kNoNeighbour) m.tet_tri_[across] = f;
+  m.tet_adj_.pop_back();
+  // Triangles, numbered in the order (tet, local face) of their first tet: a
+  // face is new unless its neighbour comes earlier (also branch-free).
+  m.tri_code_.resize(num_tris + 1);
+  m.tet_tri_.resize(4 * nt);
+  {
+    std::uint32_t next = 0;
+    for (std::uint32_t c = 0; c < 4 * nt; ++c) {
+      const std::uint32_t across = m.tet_adj_[c];
+      const bool fresh = across == kNoNeighbour || across > c;
+      const std::uint32_t earlier = m.tet_tri_[fresh ? c : across].idx, keep = 0u - std::uint32_t(fresh);
+      m.tri_code_[next] = c;
+      m.tet_tri_[c] = TriId((next & keep) | (earlier & ~keep));
+      next += fresh;
     }
   }
+  m.tri_code_.pop_back();
   // Edges, numbered by (lower vertex v, higher vertex w): for each v, the tet
   // edges whose lower vertex is v (buckets 0..2); their distinct w (a marker
   // per vertex), sorted, get consecutive ids. An edge's stored tet is the tet

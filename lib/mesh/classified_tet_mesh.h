@@ -8,6 +8,7 @@
 //  - local edge k of a tet joins kTetEdge[k][0] and kTetEdge[k][1].
 #pragma once
 #include <array>
+#include <bit>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -16,6 +17,10 @@
 #include "core/classification.h"
 #include "core/handles.h"
 #include "core/vec3.h"
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace polydual {
 
@@ -143,10 +148,20 @@ class ClassifiedTetMesh {
   }
   // The edge joining two vertices of triangle f.
   EdgeId triangle_edge(TriId f, VertexId a, VertexId b) const;
-  // Local index (0..3) of v in tet t, or -1.
+  // Local index (0..3) of v in tet t, or -1. Branch-free where SSE2 is there:
+  // the edge-ring walks call it twice per step, and which slot holds v is
+  // as good as random to a branch predictor.
   int local_index(TetId t, VertexId v) const {
+#if defined(__SSE2__)
+    static_assert(sizeof(std::array<VertexId, 4>) == 16);
+    const __m128i tv = _mm_loadu_si128(reinterpret_cast<const __m128i*>(tets_[t.idx].data()));
+    const unsigned m = unsigned(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(tv, _mm_set1_epi32(int(v.idx)))))) | 16u;
+    const int i = std::countr_zero(m);
+    return i == 4 ? -1 : i;
+#else
     const auto& tv = tets_[t.idx];
     return tv[0] == v ? 0 : tv[1] == v ? 1 : tv[2] == v ? 2 : tv[3] == v ? 3 : -1;
+#endif
   }
   // Edge id of the edge (a,b), or invalid if a and b share no tet.
   EdgeId find_edge(VertexId a, VertexId b) const;
