@@ -7,6 +7,7 @@
 //   STEP 8    cells: one per side of every primal vertex.
 #include "dual/build_dual.h"
 
+#include <algorithm>
 #include <bit>
 #include <chrono>
 
@@ -83,7 +84,8 @@ DualPoints make_points(const ClassifiedTetMesh& m, PolyMesh& pm, DualStats& st) 
       d.tet_well_centred[t] = c.well_centred;
     }
   });
-  for (char w : d.tet_well_centred) (w ? st.well_centred_tets : st.clamped_tets)++;
+  st.well_centred_tets = std::size_t(std::count(d.tet_well_centred.begin(), d.tet_well_centred.end(), 1));
+  st.clamped_tets = nt - st.well_centred_tets;
   d.tri_point.init(m.num_triangles());
   const std::uint32_t first_tri_point = std::uint32_t(pm.num_points());
   for (std::size_t f = 0; f < m.num_triangles(); ++f) {
@@ -285,7 +287,11 @@ std::vector<std::pair<PointId, PointId>> exact_coincidences(const ClassifiedTetM
     if (!d.tet_well_centred[t]) continue;
     for (int i = 0; i < 4; ++i) {
       const TetId t1 = m.tet_neighbor(t0, i);
-      if (!t1.valid() || t1.idx < t || !d.tet_well_centred[t1.idx] || m.on_model_face(m.tet_triangle(t0, i)))
+      // One branch for the four tests (each a coin toss): the flag read is
+      // guarded by the select, not by a branch.
+      const unsigned later = unsigned(t1.valid()) & unsigned(t1.idx > t);
+      if ((later & unsigned(d.tet_well_centred[later ? t1.idx : t] != 0) &
+           unsigned(!m.on_model_face(m.tet_triangle(t0, i)))) == 0)
         continue;
       const auto& a = m.tet(t0);
       const VertexId far = m.tet(t1)[m.tet_neighbor_face(t0, i)];

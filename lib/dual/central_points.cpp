@@ -21,8 +21,9 @@ CentralPoint tet_central_point(const Point3& a, const Point3& b, const Point3& c
   Sign s[4];
   double lam[4];
   const Point3 cc = circumcenter_with_signs(a, b, c, d, s, lam);
-  if (s[0] != Sign::Negative && s[1] != Sign::Negative && s[2] != Sign::Negative &&
-      s[3] != Sign::Negative)
+  // One branch (well-centred or not is a coin toss), not four.
+  if ((int(s[0] != Sign::Negative) & int(s[1] != Sign::Negative) & int(s[2] != Sign::Negative) &
+       int(s[3] != Sign::Negative)) != 0)
     return {cc, true};
   const Vec3 u = b - a, v = c - a, w = d - a;
   // Largest t in [0,1] with centroid + t (cc - centroid) in the tet: for each

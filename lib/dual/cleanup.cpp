@@ -1,12 +1,88 @@
 #include "dual/cleanup.h"
 
+#include <algorithm>
+#include <cstring>
+
 #include "classify/union_find.h"
 
 namespace polydual {
 
+namespace {
+
+// Rewrites the loops of the faces in `touched` (sorted face ids) through
+// root[], drops repeated consecutive points and faces left with fewer than 3,
+// and moves every later face down over what was removed (empty root: no
+// merges). Faces before and
+// between the touched ones are moved as blocks (one memmove and a shift of
+// their offsets): merges are rare, so almost all the work is block copies.
+// In place: faces and points only disappear, so writes never pass reads.
+std::size_t rewrite_touched_faces(PolyMesh& pm, const std::vector<std::uint32_t>& touched,
+                                  const std::vector<std::uint32_t>& root) {
+  std::size_t dropped = 0;
+  const std::size_t nf = pm.num_faces();
+  if (touched.empty()) return 0;
+  auto& off = pm.face_offsets;
+  auto& fp = pm.face_points;
+  std::size_t wf = touched.front(), wp = off[wf];  // write cursors: next face, next point
+  std::size_t rf = wf;                              // read cursor: next face
+  std::size_t read_start = off[rf];                 // original start of face rf
+  auto copy_face_data = [&](std::size_t to, std::size_t from) {
+    pm.face_owner[to] = pm.face_owner[from];
+    pm.face_neighbour[to] = pm.face_neighbour[from];
+    pm.face_kind[to] = pm.face_kind[from];
+    pm.face_tag[to] = pm.face_tag[from];
+  };
+  // Faces [rf, upto) unchanged: one block.
+  auto move_block = [&](std::size_t upto) {
+    if (upto == rf) return;
+    const std::size_t end = off[upto];
+    const std::size_t shift = read_start - wp;
+    if (shift != 0) std::memmove(fp.data() + wp, fp.data() + read_start, (end - read_start) * sizeof(PointId));
+    if (shift != 0 || wf != rf)
+      for (std::size_t f = rf; f < upto; ++f, ++wf) {
+        off[wf + 1] = static_cast<std::uint32_t>(off[f + 1] - shift);
+        copy_face_data(wf, f);
+      }
+    else
+      wf += upto - rf;
+    wp += end - read_start;
+    rf = upto;
+    read_start = end;
+  };
+  for (std::uint32_t f : touched) {
+    move_block(f);
+    const std::size_t end = off[f + 1];
+    const std::size_t start = wp;
+    for (std::size_t i = read_start; i < end; ++i) {
+      const PointId r(root.empty() ? fp[i].idx : root[fp[i].idx]);
+      if (wp == start || fp[wp - 1] != r) fp[wp++] = r;
+    }
+    while (wp - start > 1 && fp[start] == fp[wp - 1]) --wp;
+    rf = f + 1;
+    read_start = end;
+    if (wp - start < 3) {
+      wp = start;
+      ++dropped;
+      continue;
+    }
+    off[wf + 1] = static_cast<std::uint32_t>(wp);
+    copy_face_data(wf, f);
+    ++wf;
+  }
+  move_block(nf);
+  fp.resize(wp);
+  off.resize(wf + 1);
+  pm.face_owner.resize(wf);
+  pm.face_neighbour.resize(wf);
+  pm.face_kind.resize(wf);
+  pm.face_tag.resize(wf);
+  return dropped;
+}
+
+}  // namespace
+
 // Works in place (no second PolyMesh: the cleanup runs at the memory peak of
-// the dual construction): loops only shrink and faces/points only disappear, so
-// every write index is at most the read index.
+// the dual construction).
 CleanupResult cleanup_dual(PolyMesh& pm, const std::vector<std::pair<PointId, PointId>>& exact_pairs,
                            double collapse_length) {
   CleanupResult res;
@@ -17,50 +93,60 @@ CleanupResult cleanup_dual(PolyMesh& pm, const std::vector<std::pair<PointId, Po
     if (pm.point_class[p.idx] != pm.point_class[q.idx]) continue;
     if (uf.find(p.idx) != uf.find(q.idx)) { uf.unite(p.idx, q.idx); ++res.merged_points; }
   }
-  // Short edges, measured between the (merged) representatives. Inexact: a
-  // length threshold is a tolerance, not a sign.
+  // Short edges, measured between the (merged) representatives, face by face
+  // and edge by edge (p_k, p_k+1 mod n); each point's representative is found
+  // once and carried to the next edge. Inexact: a length threshold is a
+  // tolerance, not a sign.
   if (collapse_length > 0) {
     const double lim2 = collapse_length * collapse_length;
     for (std::size_t f = 0; f < nf; ++f) {
-      auto loop = pm.face(FaceId(f));
-      for (std::size_t k = 0; k < loop.size(); ++k) {
-        PointId p = loop[k], q = loop[(k + 1) % loop.size()];
-        std::uint32_t rp = uf.find(p.idx), rq = uf.find(q.idx);
-        if (rp == rq || pm.point_class[rp] != pm.point_class[rq]) continue;
-        if (norm2(pm.points[rp] - pm.points[rq]) < lim2) { uf.unite(rp, rq); ++res.collapsed_points; }
+      const std::size_t b = pm.face_offsets[f], e = pm.face_offsets[f + 1];
+      std::uint32_t rp = uf.find(pm.face_points[b].idx);
+      for (std::size_t i = b + 1; i <= e; ++i) {
+        std::uint32_t rq = uf.find(pm.face_points[i < e ? i : b].idx);
+        if (rp != rq && pm.point_class[rp] == pm.point_class[rq] && norm2(pm.points[rp] - pm.points[rq]) < lim2)
+            [[unlikely]] {
+          uf.unite(rp, rq);
+          ++res.collapsed_points;
+          rq = uf.find(rq);
+        }
+        rp = rq;
       }
     }
   }
-  // Rewrite loops through the representatives, drop repeated consecutive
-  // points and faces left with fewer than 3; mark the points still used.
-  std::vector<char> used(np, 0);
-  std::size_t out_f = 0, out_p = 0, read = 0;
-  for (std::size_t f = 0; f < nf; ++f) {
-    const std::size_t begin = read, end = pm.face_offsets[f + 1];
-    read = end;
-    const std::size_t start = out_p;
-    for (std::size_t i = begin; i < end; ++i) {
-      const PointId r(uf.find(pm.face_points[i].idx));
-      if (out_p == start || pm.face_points[out_p - 1] != r) pm.face_points[out_p++] = r;
+  // Rewrite the loops through the representatives. Only some faces change:
+  // those with a merged point, and (as without merges) those with fewer than
+  // 3 points or a point repeated consecutively. Flat passes find them.
+  {
+    const bool merged = res.merged_points + res.collapsed_points > 0;
+    std::vector<std::uint32_t> root;
+    if (merged) {
+      root.resize(np);
+      for (std::size_t p = 0; p < np; ++p) root[p] = uf.find(p);
     }
-    while (out_p - start > 1 && pm.face_points[start] == pm.face_points[out_p - 1]) --out_p;
-    if (out_p - start < 3) { out_p = start; ++res.dropped_faces; continue; }
-    for (std::size_t i = start; i < out_p; ++i) used[pm.face_points[i].idx] = 1;
-    pm.face_offsets[out_f + 1] = static_cast<std::uint32_t>(out_p);
-    pm.face_owner[out_f] = pm.face_owner[f];
-    pm.face_neighbour[out_f] = pm.face_neighbour[f];
-    pm.face_kind[out_f] = pm.face_kind[f];
-    pm.face_tag[out_f] = pm.face_tag[f];
-    ++out_f;
+    const auto& off = pm.face_offsets;
+    const auto& fp = pm.face_points;
+    std::vector<char> flag(nf, 0);
+    auto face_of = [&](std::size_t i) {
+      return std::size_t(std::upper_bound(off.begin(), off.end(), std::uint32_t(i)) - off.begin() - 1);
+    };
+    for (std::size_t f = 0; f < nf; ++f)
+      flag[f] = char((off[f + 1] - off[f] < 3) | (fp[off[f]] == fp[off[f + 1] - 1]));
+    for (std::size_t i = 0; i + 1 < fp.size(); ++i)
+      if (fp[i] == fp[i + 1]) [[unlikely]] flag[face_of(i)] = 1;
+    if (merged)
+      for (std::size_t i = 0; i < fp.size(); ++i)
+        if (root[fp[i].idx] != fp[i].idx) [[unlikely]] flag[face_of(i)] = 1;
+    std::vector<std::uint32_t> touched;
+    for (std::size_t f = 0; f < nf; ++f)
+      if (flag[f]) [[unlikely]] touched.push_back(std::uint32_t(f));
+    flag = std::vector<char>();
+    res.dropped_faces = rewrite_touched_faces(pm, touched, root);
   }
-  pm.face_points.resize(out_p);
-  pm.face_offsets.resize(out_f + 1);
-  pm.face_owner.resize(out_f);
-  pm.face_neighbour.resize(out_f);
-  pm.face_kind.resize(out_f);
-  pm.face_tag.resize(out_f);
-  // Compact the used points, keeping their order: points before the first
-  // unused one keep their ids (often all of them: then nothing moves).
+  // Drop the points no face uses, keeping the order: points before the first
+  // unused one keep their ids (usually all of them: then nothing moves).
+  std::vector<char> used(np, 0);
+  for (PointId p : pm.face_points) used[p.idx] = 1;
   std::size_t first_unused = 0;
   while (first_unused < np && used[first_unused]) ++first_unused;
   if (first_unused == np) return res;

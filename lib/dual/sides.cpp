@@ -36,12 +36,14 @@ VertexSides compute_sides(const ClassifiedTetMesh& m) {
     for (std::uint32_t k = 0; k < n; ++k) {
       const TetId t = star[k];
       const int iv = m.local_index(t, v);
-      for (int j = 0; j < 4; ++j) {
-        if (j == iv) continue;  // the face opposite v does not contain it
+      for (int q = 0; q < 3; ++q) {
+        const int j = (iv + 1 + q) & 3;  // the three faces through v
         const TetId s = m.tet_neighbor(t, j);
-        if (!s.valid() || s.idx < t.idx || m.on_model_face(m.tet_triangle(t, j))) continue;
-        const std::uint32_t ks = std::uint32_t(std::lower_bound(star.begin(), star.end(), s) - star.begin());
-        const std::uint32_t a = find(k), b = find(ks);
+        // A later neighbour across a triangle that is not on a model face
+        // (one branch: the three tests are coin tosses along a boundary).
+        if ((unsigned(s.valid()) & unsigned(s.idx > t.idx) & unsigned(!m.on_model_face(m.tet_triangle(t, j)))) == 0)
+          continue;
+        const std::uint32_t a = find(k), b = find(m.star_rank(v, s));
         if (a != b) parent[std::max(a, b)] = std::min(a, b);
       }
     }

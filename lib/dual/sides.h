@@ -27,8 +27,7 @@ struct VertexSides {
   CellId cell(TetId t, VertexId v) const {
     const std::uint32_t off = corner_off[v.idx];
     if (off == kOneSide) return CellId(first_cell[v.idx]);
-    const auto star = mesh->vertex_tets(v);
-    return corner_cell[off + std::size_t(std::lower_bound(star.begin(), star.end(), t) - star.begin())];
+    return corner_cell[off + mesh->star_rank(v, t)];
   }
 };
 

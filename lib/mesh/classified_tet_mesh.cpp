@@ -221,19 +221,29 @@ ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector
       auto add_face = [&](std::uint32_t t, int i, std::uint32_t mid, std::uint32_t max) {
         const std::uint64_t key = std::uint64_t(mid) << 32 | max;
         std::uint64_t h = (key * 0x9E3779B97F4A7C15ull) >> (64 - bits);
-        // One branch per probe (`&`, not `&&`): whether the slot is taken is the coin toss.
-        while (((table[h].tag & ~1u) == stamp) & (table[h].key != key)) h = (h + 1) & mask;
+        // Go on while the slot holds another key of this vertex, with ONE
+        // branch per probe: whether the slot is taken is the coin toss, so
+        // both tests are folded into one integer (zero iff taken and different).
+        while ((std::uint64_t((table[h].tag & ~1u) ^ stamp) | std::uint64_t(table[h].key == key)) == 0)
+          h = (h + 1) & mask;
         Slot& sl = table[h];
         const std::uint32_t code = 4 * t + std::uint32_t(i);
         const bool found = (sl.tag & ~1u) == stamp;
         const std::uint32_t other = sl.code;
-        if (found && ((sl.tag & 1u) || m.tets_[other >> 2][other & 3] == m.tets_[t][i])) [[unlikely]]
+        // A third face, or a twin tet (same vertex opposite the shared face).
+        // `other` is a valid code even in a stale slot, so the load is safe and
+        // the test stays one branch.
+        const std::uint32_t bad =
+            std::uint32_t(found) & ((sl.tag & 1u) | std::uint32_t(m.tets_[other >> 2][other & 3] == m.tets_[t][i]));
+        if (bad != 0) [[unlikely]]
           throw_face_error(m, code, other, (sl.tag & 1u) != 0);
+        // Selects as masks (a ?: here may be compiled as a branch).
+        const std::uint32_t keep = 0u - std::uint32_t(found);  // all ones iff found
         sl.key = key;
-        sl.code = found ? other : code;
+        sl.code = (other & keep) | (code & ~keep);
         sl.tag = stamp | std::uint32_t(found);
-        m.tet_adj_[found ? other : sink] = code;
-        m.tet_adj_[found ? code : sink] = other;
+        m.tet_adj_[(other & keep) | (sink & ~keep)] = code;
+        m.tet_adj_[(code & keep) | (sink & ~keep)] = other;
         num_tris += !found;
       };
       for (std::uint32_t k = boff[0][v]; k < boff[0][v + 1]; ++k) {

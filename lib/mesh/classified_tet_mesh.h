@@ -124,6 +124,19 @@ class ClassifiedTetMesh {
   std::span<const TetId> vertex_tets(VertexId v) const {
     return {vstar_.data() + vstar_off_[v.idx], vstar_.data() + vstar_off_[v.idx + 1]};
   }
+  // Position of tet t in vertex_tets(v) (t must have v). A branch-free binary
+  // search: the halving steps depend on the star's size only.
+  std::uint32_t star_rank(VertexId v, TetId t) const {
+    const TetId* base = vstar_.data() + vstar_off_[v.idx];
+    const TetId* first = base;
+    std::uint32_t len = vstar_off_[v.idx + 1] - vstar_off_[v.idx];
+    while (len > 1) {
+      const std::uint32_t half = len / 2;
+      base = base[half - 1].idx < t.idx ? base + half : base;
+      len -= half;
+    }
+    return std::uint32_t(base - first) + std::uint32_t(base->idx < t.idx);
+  }
   // The tets around edge e in right-handed order about edge(e)[0] -> edge(e)[1].
   // For an edge on the boundary the ring is open and starts at a tet whose
   // predecessor does not exist; `closed` tells which.

@@ -130,10 +130,13 @@ Point3 circumcenter_with_signs(const Point3& a, const Point3& b, const Point3& c
     mag[0] = nu * dot(avw, avw) + nv * dot(awu, avw) + nw * dot(auv, avw);
   }
   for (int i = 0; i < 4; ++i) {
+    // The sign is a coin toss (is the circumcentre beyond this face?): taken
+    // as the difference of two comparisons, with one branch for "undecided".
     const double bound = 64.0 * (DBL_EPSILON / 2) * mag[i];
-    if (std::isfinite(mag[i]) && mag[i] > 1e-200) {
-      if (val[i] > bound) { out[i] = Sign::Positive; continue; }
-      if (val[i] < -bound) { out[i] = Sign::Negative; continue; }
+    const int pos = val[i] > bound, neg = val[i] < -bound;
+    if (((pos | neg) & int(mag[i] > 1e-200) & int(mag[i] < 1e200)) != 0) [[likely]] {
+      out[i] = static_cast<Sign>(pos - neg);
+      continue;
     }
     const auto& q = perm[i];
     out[i] = filtered_sign(
