@@ -289,9 +289,10 @@ std::vector<std::pair<PointId, PointId>> exact_coincidences(const ClassifiedTetM
       const TetId t1 = m.tet_neighbor(t0, i);
       // One branch for the four tests (each a coin toss): the flag read is
       // guarded by the select, not by a branch.
-      const unsigned later = unsigned(t1.valid()) & unsigned(t1.idx > t);
-      if ((later & unsigned(d.tet_well_centred[later ? t1.idx : t] != 0) &
-           unsigned(!m.on_model_face(m.tet_triangle(t0, i)))) == 0)
+      const std::uint32_t later = std::uint32_t(t1.valid()) & std::uint32_t(t1.idx > t), keep = 0u - later;
+      const std::uint32_t t1_or_t = (t1.idx & keep) | (std::uint32_t(t) & ~keep);
+      if ((later & std::uint32_t(d.tet_well_centred[t1_or_t] != 0) &
+           std::uint32_t(!m.on_model_face(m.tet_triangle(t0, i)))) == 0)
         continue;
       const auto& a = m.tet(t0);
       const VertexId far = m.tet(t1)[m.tet_neighbor_face(t0, i)];

@@ -29,8 +29,10 @@ CentralPoint tet_central_point(const Point3& a, const Point3& b, const Point3& c
   // Largest t in [0,1] with centroid + t (cc - centroid) in the tet: for each
   // negative lambda_i, 1/4 + t (lambda_i - 1/4) >= 0.
   double t = 1.0;
-  for (int i = 0; i < 4; ++i)
-    if (lam[i] < 0.25) t = std::min(t, 0.25 / (0.25 - lam[i]));
+  for (int i = 0; i < 4; ++i) {  // selects: which lambdas are negative is a coin toss
+    const double ti = 0.25 / (0.25 - std::min(lam[i], 0.0));
+    t = std::min(t, ti);
+  }
   // Stop a relative 2^-20 short of the face: the rounded point then lies inside
   // by far more than its rounding error and the exact check below passes at
   // once (it is still the check that decides).

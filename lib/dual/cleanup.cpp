@@ -10,14 +10,12 @@ namespace polydual {
 namespace {
 
 // Rewrites the loops of the faces in `touched` (sorted face ids) through
-// root[], drops repeated consecutive points and faces left with fewer than 3,
-// and moves every later face down over what was removed (empty root: no
-// merges). Faces before and
+// their representatives, drops repeated consecutive points and faces left with fewer than 3,
+// and moves every later face down over what was removed. Faces before and
 // between the touched ones are moved as blocks (one memmove and a shift of
 // their offsets): merges are rare, so almost all the work is block copies.
 // In place: faces and points only disappear, so writes never pass reads.
-std::size_t rewrite_touched_faces(PolyMesh& pm, const std::vector<std::uint32_t>& touched,
-                                  const std::vector<std::uint32_t>& root) {
+std::size_t rewrite_touched_faces(PolyMesh& pm, const std::vector<std::uint32_t>& touched, UnionFind& uf) {
   std::size_t dropped = 0;
   const std::size_t nf = pm.num_faces();
   if (touched.empty()) return 0;
@@ -54,7 +52,7 @@ std::size_t rewrite_touched_faces(PolyMesh& pm, const std::vector<std::uint32_t>
     const std::size_t end = off[f + 1];
     const std::size_t start = wp;
     for (std::size_t i = read_start; i < end; ++i) {
-      const PointId r(root.empty() ? fp[i].idx : root[fp[i].idx]);
+      const PointId r(uf.find(fp[i].idx));
       if (wp == start || fp[wp - 1] != r) fp[wp++] = r;
     }
     while (wp - start > 1 && fp[start] == fp[wp - 1]) --wp;
@@ -119,29 +117,32 @@ CleanupResult cleanup_dual(PolyMesh& pm, const std::vector<std::pair<PointId, Po
   // 3 points or a point repeated consecutively. Flat passes find them.
   {
     const bool merged = res.merged_points + res.collapsed_points > 0;
-    std::vector<std::uint32_t> root;
-    if (merged) {
-      root.resize(np);
-      for (std::size_t p = 0; p < np; ++p) root[p] = uf.find(p);
-    }
+    // moved[p]: p was merged into another point (one byte a point: the flat
+    // pass below reads it for every loop entry).
+    std::vector<char> moved(merged ? np : 0, 0);
+    for (std::size_t p = 0; p < moved.size(); ++p) moved[p] = char(uf.find(p) != p);
     const auto& off = pm.face_offsets;
     const auto& fp = pm.face_points;
     std::vector<char> flag(nf, 0);
-    auto face_of = [&](std::size_t i) {
-      return std::size_t(std::upper_bound(off.begin(), off.end(), std::uint32_t(i)) - off.begin() - 1);
-    };
     for (std::size_t f = 0; f < nf; ++f)
       flag[f] = char((off[f + 1] - off[f] < 3) | (fp[off[f]] == fp[off[f + 1] - 1]));
-    for (std::size_t i = 0; i + 1 < fp.size(); ++i)
-      if (fp[i] == fp[i + 1]) [[unlikely]] flag[face_of(i)] = 1;
-    if (merged)
-      for (std::size_t i = 0; i < fp.size(); ++i)
-        if (root[fp[i].idx] != fp[i].idx) [[unlikely]] flag[face_of(i)] = 1;
+    // Hits are rare: the face of position i is found by a cursor that only
+    // moves forwards (hits come in increasing i).
+    std::size_t cursor = 0;
+    const std::size_t n = fp.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const bool dup = i + 1 < n && fp[i] == fp[i + 1];
+      const bool mv = merged && moved[fp[i].idx];
+      if (dup | mv) [[unlikely]] {
+        while (off[cursor + 1] <= i) ++cursor;
+        if (mv || off[cursor + 1] != i + 1) flag[cursor] = 1;  // a repeat across two faces is no repeat
+      }
+    }
     std::vector<std::uint32_t> touched;
     for (std::size_t f = 0; f < nf; ++f)
       if (flag[f]) [[unlikely]] touched.push_back(std::uint32_t(f));
     flag = std::vector<char>();
-    res.dropped_faces = rewrite_touched_faces(pm, touched, root);
+    res.dropped_faces = rewrite_touched_faces(pm, touched, uf);
   }
   // Drop the points no face uses, keeping the order: points before the first
   // unused one keep their ids (usually all of them: then nothing moves).

@@ -87,7 +87,7 @@ class ClassifiedTetMesh {
   // Neighbour across local face i (invalid on the boundary).
   TetId tet_neighbor(TetId t, int i) const {
     const std::uint32_t c = tet_adj_[4 * t.idx + i];
-    return c == kNoNeighbour ? TetId::invalid() : TetId(c >> 2);
+    return TetId((c >> 2) | (0u - std::uint32_t(c == kNoNeighbour)));  // invalid() is all ones
   }
   // The neighbour's local index of the shared face (-1 on the boundary).
   int tet_neighbor_face(TetId t, int i) const {
@@ -132,7 +132,7 @@ class ClassifiedTetMesh {
     std::uint32_t len = vstar_off_[v.idx + 1] - vstar_off_[v.idx];
     while (len > 1) {
       const std::uint32_t half = len / 2;
-      base = base[half - 1].idx < t.idx ? base + half : base;
+      base += half & (0u - std::uint32_t(base[half - 1].idx < t.idx));  // a mask, not a branch
       len -= half;
     }
     return std::uint32_t(base - first) + std::uint32_t(base->idx < t.idx);

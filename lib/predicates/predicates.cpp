@@ -129,15 +129,20 @@ Point3 circumcenter_with_signs(const Point3& a, const Point3& b, const Point3& c
     val[0] = nu * dot(vw, vw) + nv * dot(wu, vw) + nw * dot(uv, vw);
     mag[0] = nu * dot(avw, avw) + nv * dot(awu, avw) + nw * dot(auv, avw);
   }
+  // Each sign is a coin toss (is the circumcentre beyond this face?): taken as
+  // the difference of two comparisons, with one branch for "all four decided".
+  int decided = 1;
   for (int i = 0; i < 4; ++i) {
-    // The sign is a coin toss (is the circumcentre beyond this face?): taken
-    // as the difference of two comparisons, with one branch for "undecided".
     const double bound = 64.0 * (DBL_EPSILON / 2) * mag[i];
     const int pos = val[i] > bound, neg = val[i] < -bound;
-    if (((pos | neg) & int(mag[i] > 1e-200) & int(mag[i] < 1e200)) != 0) [[likely]] {
-      out[i] = static_cast<Sign>(pos - neg);
-      continue;
-    }
+    decided &= (pos | neg) & int(mag[i] > 1e-200) & int(mag[i] < 1e200);
+    out[i] = static_cast<Sign>(pos - neg);
+  }
+  if (decided) [[likely]] return center;
+  for (int i = 0; i < 4; ++i) {
+    const double bound = 64.0 * (DBL_EPSILON / 2) * mag[i];
+    if (((int(val[i] > bound) | int(val[i] < -bound)) & int(mag[i] > 1e-200) & int(mag[i] < 1e200)) != 0)
+      continue;  // decided above
     const auto& q = perm[i];
     out[i] = filtered_sign(
         [&](auto zero) {
