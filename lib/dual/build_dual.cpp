@@ -190,64 +190,71 @@ void make_caps(const ClassifiedTetMesh& m, const VertexSides& sides, const DualP
       if (m.on_model_face(TriId(f)))
         for (VertexId v : m.triangle(TriId(f))) vt[fill[v.idx]++] = TriId(f);
   }
-  struct Oriented { TriId f; VertexId p, q; };  // triangle seen as (v, p, q)
-  std::vector<char> visited;
+  // Per vertex v: each triangle k of L seen as (v, A[k], B[k]) in its stored
+  // orientation, and whether the edges (v, A[k]), (v, B[k]) are model edges
+  // (a run stops there).
+  std::vector<VertexId> A, B;
+  std::vector<char> stopA, stopB, visited;
+  struct Oriented { std::uint32_t k; VertexId p, q; };  // triangle L[k] seen as (v, p, q)
   std::vector<Oriented> seq;
   std::vector<PointId> loop;
   for (std::size_t vi = 0; vi < nv; ++vi) {
     const VertexId v(vi);
     const std::span<const TriId> L(vt.data() + off[vi], vt.data() + off[vi + 1]);
     if (L.empty()) continue;
-    visited.assign(L.size(), 0);
-    auto index_of = [&](TriId f) { return std::size_t(std::find(L.begin(), L.end(), f) - L.begin()); };
-    // The run triangle other than `cur` sharing edge (v, w), or invalid at a model edge.
-    auto across = [&](TriId cur, VertexId w) -> TriId {
-      if (m.edge_class(m.triangle_edge(cur, v, w)).dim == 1) return TriId::invalid();
-      for (TriId g : L)
-        if (g != cur) {
-          const auto& gv = m.triangle(g);
-          if (gv[0] == w || gv[1] == w || gv[2] == w) return g;
-        }
-      return TriId::invalid();
+    const std::uint32_t n = std::uint32_t(L.size());
+    A.resize(n);
+    B.resize(n);
+    stopA.resize(n);
+    stopB.resize(n);
+    visited.assign(n, 0);
+    for (std::uint32_t k = 0; k < n; ++k) {
+      const auto t = m.triangle(L[k]);  // outward from triangle_tet(L[k], 0)
+      const int i = t[0] == v ? 0 : (t[1] == v ? 1 : 2);
+      A[k] = t[(i + 1) % 3];
+      B[k] = t[(i + 2) % 3];
+      stopA[k] = m.edge_class(m.triangle_edge(L[k], v, A[k])).dim == 1;
+      stopB[k] = m.edge_class(m.triangle_edge(L[k], v, B[k])).dim == 1;
+    }
+    // The run triangle other than k sharing edge (v, w) (found without
+    // branches: L is short), or -1 at a model edge. Such an edge has exactly
+    // two model-face triangles, of one model face.
+    auto across = [&](std::uint32_t k, VertexId w, bool stop) -> std::int64_t {
+      if (stop) return -1;
+      std::int64_t hit = -1;
+      for (std::uint32_t j = n; j-- > 0;) {
+        const bool h = (j != k) & ((A[j] == w) | (B[j] == w));
+        hit = h ? std::int64_t(j) : hit;
+      }
+      return hit;
     };
-    auto orient = [&](TriId f) {
-      const auto& t = m.triangle(f);  // outward from triangle_tet(f, 0)
-      int k = t[0] == v ? 0 : (t[1] == v ? 1 : 2);
-      return Oriented{f, t[(k + 1) % 3], t[(k + 2) % 3]};
-    };
-    for (std::size_t i0 = 0; i0 < L.size(); ++i0) {
+    // The vertex of L[j] other than v and w.
+    auto other_than = [&](std::uint32_t j, VertexId w) { return A[j] == w ? B[j] : A[j]; };
+    for (std::uint32_t i0 = 0; i0 < n; ++i0) {
       if (visited[i0]) continue;
-      const Oriented first = orient(L[i0]);
+      const Oriented first{i0, A[i0], B[i0]};
       // Walk backwards to the start of an open run.
       Oriented start = first;
       bool closed = false;
       for (;;) {
-        TriId g = across(start.f, start.p);
-        if (!g.valid()) break;
-        if (g == first.f) { closed = true; break; }
-        const auto& gv = m.triangle(g);
-        VertexId other = VertexId::invalid();
-        for (VertexId x : gv) if (x != v && x != start.p) other = x;
-        start = Oriented{g, other, start.p};
+        const std::int64_t g = across(start.k, start.p, start.p == A[start.k] ? stopA[start.k] : stopB[start.k]);
+        if (g < 0) break;
+        if (std::uint32_t(g) == first.k) { closed = true; break; }
+        start = Oriented{std::uint32_t(g), other_than(std::uint32_t(g), start.p), start.p};
       }
       // Walk forwards collecting the run.
       seq.clear();
       Oriented cur = start;
       for (;;) {
         seq.push_back(cur);
-        visited[index_of(cur.f)] = 1;
-        TriId g = across(cur.f, cur.q);
-        if (!g.valid() || g == start.f) break;
-        const auto& gv = m.triangle(g);
-        VertexId other = VertexId::invalid();
-        for (VertexId x : gv) if (x != v && x != cur.q) other = x;
-        cur = Oriented{g, cur.q, other};
+        visited[cur.k] = 1;
+        const std::int64_t g = across(cur.k, cur.q, cur.q == A[cur.k] ? stopA[cur.k] : stopB[cur.k]);
+        if (g < 0 || std::uint32_t(g) == start.k) break;
+        cur = Oriented{std::uint32_t(g), cur.q, other_than(std::uint32_t(g), cur.q)};
       }
       loop.clear();
-      if (!closed) {
-        loop.push_back(d.edge_point[m.triangle_edge(seq.front().f, v, seq.front().p).idx]);
-      }
-      for (const Oriented& o : seq) loop.push_back(d.tri_point[o.f.idx]);
+      if (!closed) loop.push_back(d.edge_point[m.triangle_edge(L[seq.front().k], v, seq.front().p).idx]);
+      for (const Oriented& o : seq) loop.push_back(d.tri_point[L[o.k].idx]);
       // A run that leaves and re-enters through the same model edge (a model
       // edge ending at v inside the face) closes through that edge's midpoint
       // once: going out to v and back would only add a spike (a repeated point
@@ -255,14 +262,14 @@ void make_caps(const ClassifiedTetMesh& m, const VertexSides& sides, const DualP
       // closes this way, the model vertex v has no dual point (validate()
       // reports it as missing).
       if (!closed && seq.front().p != seq.back().q) {
-        loop.push_back(d.edge_point[m.triangle_edge(seq.back().f, v, seq.back().q).idx]);
+        loop.push_back(d.edge_point[m.triangle_edge(L[seq.back().k], v, seq.back().q).idx]);
         if (d.vert_point[vi].valid()) loop.push_back(d.vert_point[vi]);
       }
       // The loop follows `first`'s orientation only if `first`'s stored
       // orientation agrees with the walk: orientation of each triangle in the
       // walk is induced from `first`, so the owner is the side of the tet that
       // `first`'s stored orientation points out of.
-      const TriId f0 = first.f;
+      const TriId f0 = L[first.k];
       const TetId t0 = m.triangle_tet(f0, 0), t1 = m.triangle_tet(f0, 1);
       const CellId owner = sides.cell(t0, v);
       const CellId neigh = t1.valid() ? sides.cell(t1, v) : CellId::invalid();
@@ -281,19 +288,31 @@ std::vector<std::pair<PointId, PointId>> exact_coincidences(const ClassifiedTetM
                                                              const PolyMesh& pm) {
   std::vector<std::pair<PointId, PointId>> pairs;
   // Each interior triangle once, from its smaller tet t0; the neighbour's
-  // vertex across it is the one opposite the shared face.
-  for (std::size_t t = 0; t < m.num_tets(); ++t) {
-    const TetId t0(t);
-    if (!d.tet_well_centred[t]) continue;
-    for (int i = 0; i < 4; ++i) {
+  // vertex across it is the one opposite the shared face. Whether a face
+  // needs the test is a coin toss, so the candidates of a block of tets are
+  // gathered without branches first (written always, counted by the flag),
+  // then tested.
+  const std::size_t nt = m.num_tets();
+  constexpr std::size_t kBlock = 4096;
+  std::vector<std::uint32_t> cand(4 * kBlock);
+  for (std::size_t begin = 0; begin < nt; begin += kBlock) {
+    const std::size_t end = std::min(nt, begin + kBlock);
+    std::size_t n = 0;
+    for (std::size_t t = begin; t < end; ++t) {
+      const std::uint32_t wc0 = std::uint32_t(d.tet_well_centred[t] != 0);
+      for (int i = 0; i < 4; ++i) {
+        const TetId t1 = m.tet_neighbor(TetId(t), i);
+        const std::uint32_t later = std::uint32_t(t1.valid()) & std::uint32_t(t1.idx > t), keep = 0u - later;
+        const std::uint32_t t1_or_t = (t1.idx & keep) | (std::uint32_t(t) & ~keep);
+        cand[n] = std::uint32_t(4 * t + std::size_t(i));
+        n += wc0 & later & std::uint32_t(d.tet_well_centred[t1_or_t] != 0) &
+             std::uint32_t(!m.on_model_face(m.tet_triangle(TetId(t), i)));
+      }
+    }
+    for (std::size_t k = 0; k < n; ++k) {
+      const TetId t0(cand[k] >> 2);
+      const int i = int(cand[k] & 3);
       const TetId t1 = m.tet_neighbor(t0, i);
-      // One branch for the four tests (each a coin toss): the flag read is
-      // guarded by the select, not by a branch.
-      const std::uint32_t later = std::uint32_t(t1.valid()) & std::uint32_t(t1.idx > t), keep = 0u - later;
-      const std::uint32_t t1_or_t = (t1.idx & keep) | (std::uint32_t(t) & ~keep);
-      if ((later & std::uint32_t(d.tet_well_centred[t1_or_t] != 0) &
-           std::uint32_t(!m.on_model_face(m.tet_triangle(t0, i)))) == 0)
-        continue;
       const auto& a = m.tet(t0);
       const VertexId far = m.tet(t1)[m.tet_neighbor_face(t0, i)];
       if (insphere(m.point(a[0]), m.point(a[1]), m.point(a[2]), m.point(a[3]), m.point(far)) == Sign::Zero)

@@ -15,6 +15,8 @@ VertexSides compute_sides(const ClassifiedTetMesh& m) {
   // Per vertex v, a union-find over the positions of its star (sorted by tet):
   // tets sharing a triangle through v that is not on a model face join.
   std::vector<std::uint32_t> parent, root_cell;
+  struct Join { std::uint32_t k; TetId s; };
+  std::vector<Join> joins;
   auto find = [&](std::uint32_t x) {
     while (parent[x] != x) x = parent[x] = parent[parent[x]];
     return x;
@@ -33,19 +35,25 @@ VertexSides compute_sides(const ClassifiedTetMesh& m) {
     const std::uint32_t n = std::uint32_t(star.size());
     parent.resize(n);
     for (std::uint32_t k = 0; k < n; ++k) parent[k] = k;
+    // Joins with a later neighbour across a triangle that is not on a model
+    // face. Which faces join is a coin toss along a boundary: the pairs are
+    // gathered without branches (written always, counted by the flag), then
+    // united.
+    joins.resize(3 * std::size_t(n));
+    std::size_t nj = 0;
     for (std::uint32_t k = 0; k < n; ++k) {
       const TetId t = star[k];
       const int iv = m.local_index(t, v);
       for (int q = 0; q < 3; ++q) {
         const int j = (iv + 1 + q) & 3;  // the three faces through v
         const TetId s = m.tet_neighbor(t, j);
-        // A later neighbour across a triangle that is not on a model face
-        // (one branch: the three tests are coin tosses along a boundary).
-        if ((unsigned(s.valid()) & unsigned(s.idx > t.idx) & unsigned(!m.on_model_face(m.tet_triangle(t, j)))) == 0)
-          continue;
-        const std::uint32_t a = find(k), b = find(m.star_rank(v, s));
-        if (a != b) parent[std::max(a, b)] = std::min(a, b);
+        joins[nj] = {k, s};
+        nj += unsigned(s.valid()) & unsigned(s.idx > t.idx) & unsigned(!m.on_model_face(m.tet_triangle(t, j)));
       }
+    }
+    for (std::size_t q = 0; q < nj; ++q) {
+      const std::uint32_t a = find(joins[q].k), b = find(m.star_rank(v, joins[q].s));
+      if (a != b) parent[std::max(a, b)] = std::min(a, b);
     }
     out.corner_off[vi] = std::uint32_t(out.corner_cell.size());
     root_cell.assign(n, CellId::kInvalid);

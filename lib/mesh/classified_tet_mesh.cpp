@@ -47,13 +47,10 @@ const ModelEntity* ModelTopology::find(int dim, std::int32_t tag) const {
 }
 
 EdgeId ClassifiedTetMesh::find_edge(VertexId a, VertexId b) const {
+  if (a == b) return EdgeId::invalid();
   for (TetId t : vertex_tets(a)) {
-    int ia = local_index(t, a), ib = local_index(t, b);
-    if (ib < 0) continue;
-    for (int k = 0; k < 6; ++k)
-      if ((kTetEdge[k][0] == ia && kTetEdge[k][1] == ib) ||
-          (kTetEdge[k][0] == ib && kTetEdge[k][1] == ia))
-        return tet_edge(t, k);
+    const int ia = local_index(t, a), ib = local_index(t, b);
+    if (ib >= 0) return tet_edge(t, detail::kEdgeOf[ia][ib]);
   }
   return EdgeId::invalid();
 }
@@ -107,14 +104,6 @@ void ClassifiedTetMesh::edge_ring(EdgeId e, std::vector<TetId>& tets, std::vecto
   std::rotate(tris.begin(), tris.begin() + std::ptrdiff_t(n_tris), tris.end());
 }
 
-EdgeId ClassifiedTetMesh::triangle_edge(TriId f, VertexId a, VertexId b) const {
-  TetId t = triangle_tet(f, 0);
-  int ia = local_index(t, a), ib = local_index(t, b);
-  for (int k = 0; k < 6; ++k)
-    if ((kTetEdge[k][0] == ia && kTetEdge[k][1] == ib) || (kTetEdge[k][0] == ib && kTetEdge[k][1] == ia))
-      return tet_edge(t, k);
-  return EdgeId::invalid();
-}
 
 double ClassifiedTetMesh::tet_volume(TetId t) const {
   const auto& v = tets_[t.idx];
@@ -284,14 +273,6 @@ ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector
   // per vertex), sorted, get consecutive ids. An edge's stored tet is the tet
   // of its first record.
   {
-    static constexpr auto kEdgeOf = [] {  // local edge joining local vertices i and j
-      std::array<std::array<std::int8_t, 4>, 4> e{};
-      for (int k = 0; k < 6; ++k) {
-        e[kTetEdge[k][0]][kTetEdge[k][1]] = std::int8_t(k);
-        e[kTetEdge[k][1]][kTetEdge[k][0]] = std::int8_t(k);
-      }
-      return e;
-    }();
     std::vector<std::uint32_t> mark(nv, std::uint32_t(-1)), slot(nv, 0);
     struct Nb { std::uint32_t w, code; };  // code = 8 * tet + local edge
     std::vector<Nb> nbs;
@@ -313,7 +294,7 @@ ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector
       nbs.clear();
       for_each_upper(vv, [&](std::uint32_t t, int iv, int iw) {
         const std::uint32_t w = m.tets_[t][iw].idx;
-        if (mark[w] != vv) { mark[w] = vv; nbs.push_back({w, 8 * t + std::uint32_t(kEdgeOf[iv][iw])}); }
+        if (mark[w] != vv) { mark[w] = vv; nbs.push_back({w, 8 * t + std::uint32_t(detail::kEdgeOf[iv][iw])}); }
       });
       for (std::size_t i = 1; i < nbs.size(); ++i) {
         const Nb r = nbs[i];
@@ -327,7 +308,7 @@ ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector
         slot[nbs[r].w] = base + std::uint32_t(r);
       }
       for_each_upper(vv, [&](std::uint32_t t, int iv, int iw) {
-        m.tet_edge_[6 * t + kEdgeOf[iv][iw]] = EdgeId(slot[m.tets_[t][iw].idx]);
+        m.tet_edge_[6 * t + detail::kEdgeOf[iv][iw]] = EdgeId(slot[m.tets_[t][iw].idx]);
       });
     }
   }

@@ -52,6 +52,15 @@ struct RingTable {
   }
 };
 inline constexpr RingTable kRing;
+// The local edge joining local vertices i != j (kTetEdge's inverse).
+inline constexpr auto kEdgeOf = [] {
+  std::array<std::array<std::int8_t, 4>, 4> e{};
+  for (int k = 0; k < 6; ++k) {
+    e[kTetEdge[k][0]][kTetEdge[k][1]] = std::int8_t(k);
+    e[kTetEdge[k][1]][kTetEdge[k][0]] = std::int8_t(k);
+  }
+  return e;
+}();
 }  // namespace detail
 
 // One entity of the geometric model and the higher-dimensional entities it bounds
@@ -159,8 +168,11 @@ class ClassifiedTetMesh {
       t = TetId(code >> 2);
     } while (t != start);
   }
-  // The edge joining two vertices of triangle f.
-  EdgeId triangle_edge(TriId f, VertexId a, VertexId b) const;
+  // The edge joining two distinct vertices a, b of triangle f (a precondition).
+  EdgeId triangle_edge(TriId f, VertexId a, VertexId b) const {
+    const TetId t = triangle_tet(f, 0);
+    return tet_edge(t, detail::kEdgeOf[local_index(t, a)][local_index(t, b)]);
+  }
   // Local index (0..3) of v in tet t, or -1. Branch-free where SSE2 is there:
   // the edge-ring walks call it twice per step, and which slot holds v is
   // as good as random to a branch predictor.
