@@ -3,6 +3,7 @@
 // interior edges and consistent stars.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <set>
 
 #include "classify/classify.h"
@@ -125,5 +126,51 @@ TEST(MeshTopology, SpatialRenumberingMapsBackToTheInput) {
       prev_low = low;
     }
     EXPECT_FALSE(identity) << "seed " << seed << ": Delaunay output is not already in Morton order";
+  }
+}
+
+// Edges are numbered by (lower vertex, higher vertex) and every tet names its
+// six edges, also around a vertex with very many neighbours (build_topology
+// counts ranks for a few neighbours and sorts for many): a bipyramid fan of
+// n tets around the axis (apex, bottom), whose two poles have n + 1 neighbours.
+TEST(MeshTopology, EdgeNumberingAroundHighValenceVertices) {
+  for (int n : {5, 40, 150}) {
+    SCOPED_TRACE("fan of " + std::to_string(n));
+    TetSoup s;
+    s.source = "fan";
+    s.points.push_back({0, 0, 1});
+    s.points.push_back({0, 0, -1});
+    for (int i = 0; i < n; ++i) {
+      const double a = 2 * 3.14159265358979 * i / n;
+      s.points.push_back({std::cos(a), std::sin(a), 0.0});
+    }
+    for (int i = 0; i < n; ++i) {
+      std::array<std::uint32_t, 4> t{0, 1, std::uint32_t(2 + i), std::uint32_t(2 + (i + 1) % n)};
+      if (orient3d(s.points[t[0]], s.points[t[1]], s.points[t[2]], s.points[t[3]]) != Sign::Positive)
+        std::swap(t[2], t[3]);
+      s.tets.push_back(t);
+      s.tet_region.push_back(1);
+    }
+    const ClassifiedTetMesh m = classify(s);
+    ASSERT_EQ(m.num_edges(), std::size_t(1 + 3 * n));  // the axis, n spokes per pole, n rim edges
+    for (std::size_t e = 0; e < m.num_edges(); ++e) {
+      const auto [a, b] = m.edge(EdgeId(e));
+      EXPECT_LT(a, b);
+      if (e > 0) {
+        const auto [pa, pb] = m.edge(EdgeId(e - 1));
+        EXPECT_TRUE(pa < a || (pa == a && pb < b)) << "edge " << e << " out of (a, b) order";
+      }
+      EXPECT_GE(m.local_index(m.edge_tet(EdgeId(e)), a), 0);
+      EXPECT_GE(m.local_index(m.edge_tet(EdgeId(e)), b), 0);
+      EXPECT_EQ(m.find_edge(a, b), EdgeId(e));
+      EXPECT_EQ(m.find_edge(b, a), EdgeId(e));
+    }
+    for (std::size_t t = 0; t < m.num_tets(); ++t)
+      for (int k = 0; k < 6; ++k) {
+        const auto [a, b] = m.edge(m.tet_edge(TetId(t), k));
+        const VertexId p = m.tet(TetId(t))[kTetEdge[k][0]], q = m.tet(TetId(t))[kTetEdge[k][1]];
+        EXPECT_EQ(std::min(p, q), a);
+        EXPECT_EQ(std::max(p, q), b);
+      }
   }
 }

@@ -223,8 +223,8 @@ void make_caps(const ClassifiedTetMesh& m, const VertexSides& sides, const DualP
       if (stop) return -1;
       std::int64_t hit = -1;
       for (std::uint32_t j = n; j-- > 0;) {
-        const bool h = (j != k) & ((A[j] == w) | (B[j] == w));
-        hit = h ? std::int64_t(j) : hit;
+        const std::int64_t h = std::int64_t((j != k) & ((A[j] == w) | (B[j] == w)));
+        hit ^= (hit ^ std::int64_t(j)) & -h;  // a mask: ?: here compiles to a branch
       }
       return hit;
     };

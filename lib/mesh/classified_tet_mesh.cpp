@@ -269,47 +269,57 @@ ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector
   }
   m.tri_code_.pop_back();
   // Edges, numbered by (lower vertex v, higher vertex w): for each v, the tet
-  // edges whose lower vertex is v (buckets 0..2); their distinct w (a marker
-  // per vertex), sorted, get consecutive ids. An edge's stored tet is the tet
-  // of its first record.
+  // edges whose lower vertex is v (buckets 0..2) are gathered once; their
+  // distinct w (a marker per vertex) get consecutive ids in increasing w, each
+  // id from its rank among them (counted, not sorted: no data-dependent
+  // branches). An edge's stored tet is the tet of its first record.
   {
     std::vector<std::uint32_t> mark(nv, std::uint32_t(-1)), slot(nv, 0);
-    struct Nb { std::uint32_t w, code; };  // code = 8 * tet + local edge
-    std::vector<Nb> nbs;
+    struct Rec { std::uint32_t w, code; };  // code = 8 * tet + local edge
+    std::vector<Rec> recs, nbs;
     m.tet_edge_.resize(6 * nt);
     // Euler's relation for a ball: E = V + T + (boundary triangles)/2 - 1.
     const std::size_t ne_guess = nv + nt + (2 * num_tris - 4 * nt) / 2 + 16;
     m.edge_code_.reserve(ne_guess);
-    // Calls f(t, local index of v, local index of w) for each tet edge (v, w > v).
-    auto for_each_upper = [&](std::uint32_t v, auto&& f) {
+    for (std::size_t v = 0; v < nv; ++v) {
+      const std::uint32_t vv = std::uint32_t(v);
+      const std::size_t most = 3 * std::size_t(boff[0][v + 1] - boff[0][v]) +
+                               2 * std::size_t(boff[1][v + 1] - boff[1][v]) + (boff[2][v + 1] - boff[2][v]);
+      if (recs.size() < most) {
+        recs.resize(most);
+        nbs.resize(most + 1);
+      }
+      std::size_t n_recs = 0, n_nbs = 0;
       for (int r = 0; r < 3; ++r)
         for (std::uint32_t k = boff[r][v]; k < boff[r][v + 1]; ++k) {
           const std::uint32_t t = bucket[r][k];
-          const int o = sorted[t];
-          for (int q = r + 1; q < 4; ++q) f(t, (o >> (2 * r)) & 3, (o >> (2 * q)) & 3);
+          const int o = sorted[t], iv = (o >> (2 * r)) & 3;
+          for (int q = r + 1; q < 4; ++q) {
+            const int iw = (o >> (2 * q)) & 3;
+            const std::uint32_t w = m.tets_[t][iw].idx, code = 8 * t + std::uint32_t(detail::kEdgeOf[iv][iw]);
+            recs[n_recs++] = {w, code};
+            nbs[n_nbs] = {w, code};  // kept only if w is new
+            n_nbs += mark[w] != vv;
+            mark[w] = vv;
+          }
         }
-    };
-    for (std::size_t v = 0; v < nv; ++v) {
-      const std::uint32_t vv = std::uint32_t(v);
-      nbs.clear();
-      for_each_upper(vv, [&](std::uint32_t t, int iv, int iw) {
-        const std::uint32_t w = m.tets_[t][iw].idx;
-        if (mark[w] != vv) { mark[w] = vv; nbs.push_back({w, 8 * t + std::uint32_t(detail::kEdgeOf[iv][iw])}); }
-      });
-      for (std::size_t i = 1; i < nbs.size(); ++i) {
-        const Nb r = nbs[i];
-        std::size_t j = i;
-        for (; j > 0 && r.w < nbs[j - 1].w; --j) nbs[j] = nbs[j - 1];
-        nbs[j] = r;
-      }
       const std::uint32_t base = std::uint32_t(m.edge_code_.size());
-      for (std::size_t r = 0; r < nbs.size(); ++r) {
-        m.edge_code_.push_back(nbs[r].code);
-        slot[nbs[r].w] = base + std::uint32_t(r);
+      m.edge_code_.resize(base + n_nbs);
+      // Counting is quadratic: a vertex with very many neighbours (a fan) sorts.
+      if (n_nbs > 64) std::sort(nbs.begin(), nbs.begin() + std::ptrdiff_t(n_nbs), [](Rec x, Rec y) { return x.w < y.w; });
+      for (std::size_t i = 0; i < n_nbs; ++i) {
+        if (n_nbs > 64) {
+          m.edge_code_[base + i] = nbs[i].code;
+          slot[nbs[i].w] = base + std::uint32_t(i);
+          continue;
+        }
+        std::uint32_t rank = 0;
+        for (std::size_t j = 0; j < n_nbs; ++j) rank += nbs[j].w < nbs[i].w;
+        m.edge_code_[base + rank] = nbs[i].code;
+        slot[nbs[i].w] = base + rank;
       }
-      for_each_upper(vv, [&](std::uint32_t t, int iv, int iw) {
-        m.tet_edge_[6 * t + detail::kEdgeOf[iv][iw]] = EdgeId(slot[m.tets_[t][iw].idx]);
-      });
+      for (std::size_t i = 0; i < n_recs; ++i)
+        m.tet_edge_[6 * (recs[i].code >> 3) + (recs[i].code & 7)] = EdgeId(slot[recs[i].w]);
     }
   }
   m.vertex_class_.assign(nv, ModelRef{});
