@@ -17,6 +17,7 @@
 // not fault again. The peak resident size stays that of the live data.
 #include <malloc.h>
 #include <sys/mman.h>
+#include <unistd.h>
 
 #include <cstdint>
 #include <cstdlib>
@@ -38,9 +39,12 @@ void* allocate(std::size_t n) {
   void* p = std::malloc(n == 0 ? 1 : n);
   if (!p) throw std::bad_alloc();
   if (n >= kHugeThreshold) {
-    // The whole 4 KiB pages inside the block (madvise needs page alignment).
-    const std::uintptr_t page = 4096, b = (reinterpret_cast<std::uintptr_t>(p) + page - 1) & ~(page - 1),
-                         e = (reinterpret_cast<std::uintptr_t>(p) + n) & ~(page - 1);
+    // The whole 4 KiB pages from the block to the heap's top (madvise needs
+    // page alignment): the block, and the free top chunk (M_TOP_PAD) from which
+    // the small allocations that follow are carved.
+    const std::uintptr_t page = 4096, at = reinterpret_cast<std::uintptr_t>(p),
+                         top = reinterpret_cast<std::uintptr_t>(sbrk(0));
+    const std::uintptr_t b = (at + page - 1) & ~(page - 1), e = (at < top ? top : at + n) & ~(page - 1);
     if (e > b) (void)madvise(reinterpret_cast<void*>(b), e - b, MADV_HUGEPAGE);
   }
   return p;
