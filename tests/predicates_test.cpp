@@ -133,6 +133,92 @@ TEST(Predicates, CircumcenterSignsMatchRationalBarycentrics) {
   EXPECT_GT(zeros, 0);         // and the lattice ones hit exact zeros
 }
 
+// The sign at vertex a comes from the identity N_a = 2 D^2 - N_b - N_c - N_d
+// (proofs/star_filter.md, L9b), where cancellation is worst: circumcentres on
+// or within a few ulps of face bcd. Apex a on the sphere over the unit circle
+// through b, c, d has lambda_a = 0 exactly; nudging any coordinate by ulps
+// makes it tiny and of either sign. Checked against rational arithmetic.
+TEST(Predicates, CircumcenterSignAtApexNearOppositeFace) {
+  using Q = CGAL::Gmpq;
+  using P = std::array<Q, 3>;
+  auto det3 = [](const P& x, const P& y, const P& z) {
+    return x[0] * (y[1] * z[2] - y[2] * z[1]) - x[1] * (y[0] * z[2] - y[2] * z[0]) + x[2] * (y[0] * z[1] - y[1] * z[0]);
+  };
+  auto sub = [](const P& x, const P& y) { return P{x[0] - y[0], x[1] - y[1], x[2] - y[2]}; };
+  auto dotq = [](const P& x, const P& y) { return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]; };
+  auto nudge = [](double x, int ulps) {
+    for (; ulps > 0; --ulps) x = std::nextafter(x, 2.0);
+    for (; ulps < 0; ++ulps) x = std::nextafter(x, -2.0);
+    return x;
+  };
+  int zeros = 0, positives = 0, negatives = 0;
+  for (int k = -3; k <= 3; ++k)
+    for (int which = 0; which < 12; ++which) {
+      // b, c, d on the unit circle z = 0 (dyadic points), a = north pole.
+      Point3 v[4] = {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}};
+      double* coord[12] = {&v[0].x, &v[0].y, &v[0].z, &v[1].x, &v[1].y, &v[1].z,
+                           &v[2].x, &v[2].y, &v[2].z, &v[3].x, &v[3].y, &v[3].z};
+      *coord[which] = nudge(*coord[which], k);
+      P q[4];
+      for (int i = 0; i < 4; ++i) q[i] = {Q(v[i].x), Q(v[i].y), Q(v[i].z)};
+      Q D = det3(sub(q[1], q[0]), sub(q[2], q[0]), sub(q[3], q[0]));
+      ASSERT_NE(D, 0);
+      if (D < 0) { std::swap(v[2], v[3]); std::swap(q[2], q[3]); }
+      const P e1 = sub(q[1], q[0]), e2 = sub(q[2], q[0]), e3 = sub(q[3], q[0]);
+      D = det3(e1, e2, e3);
+      const P r{dotq(e1, e1) / 2, dotq(e2, e2) / 2, dotq(e3, e3) / 2};
+      const P c0{e1[0], e2[0], e3[0]}, c1{e1[1], e2[1], e3[1]}, c2{e1[2], e2[2], e3[2]};
+      const P cc{q[0][0] + det3(r, c1, c2) / D, q[0][1] + det3(c0, r, c2) / D, q[0][2] + det3(c0, c1, r) / D};
+      Sign s[4];
+      circumcenter_barycentric_signs(v[0], v[1], v[2], v[3], s);
+      P t[4] = {cc, q[1], q[2], q[3]};
+      const int expect = CGAL::sign(det3(sub(t[1], t[0]), sub(t[2], t[0]), sub(t[3], t[0])));
+      ASSERT_EQ(static_cast<int>(s[0]), expect) << "nudge " << k << " ulps on coordinate " << which;
+      zeros += expect == 0;
+      positives += expect > 0;
+      negatives += expect < 0;
+    }
+  // Random triangles far from the origin, the apex rounded onto the sphere
+  // over their circumcircle: lambda_a is tiny and its sign is at the mercy of
+  // rounding (plain doubles get it wrong here; see the count below).
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> U(-1, 1);
+  int near = 0;
+  for (int iter = 0; iter < 2000; ++iter) {
+    const Vec3 off{1000.0 + U(rng), -700.0 + U(rng), 300.0 + U(rng)};
+    Point3 b{U(rng), U(rng), U(rng)}, c{U(rng), U(rng), U(rng)}, d{U(rng), U(rng), U(rng)};
+    const Vec3 n = cross(c - b, d - b);
+    if (norm(n) < 0.1) continue;
+    // Circumcentre of bcd in its plane, then the apex over it at the circumradius.
+    const Vec3 e1 = c - b, e2 = d - b;
+    const double a11 = dot(e1, e1), a12 = dot(e1, e2), a22 = dot(e2, e2), det = a11 * a22 - a12 * a12;
+    const double s1 = (a22 * a11 - a12 * a22) / (2 * det), s2 = (a11 * a22 - a12 * a11) / (2 * det);
+    const Point3 o = b + s1 * e1 + s2 * e2;
+    const double rad = norm(b - o);
+    Point3 v[4] = {o + (rad / norm(n)) * n + off, b + off, c + off, d + off};
+    P q[4];
+    for (int i = 0; i < 4; ++i) q[i] = {Q(v[i].x), Q(v[i].y), Q(v[i].z)};
+    Q D = det3(sub(q[1], q[0]), sub(q[2], q[0]), sub(q[3], q[0]));
+    if (D == 0) continue;
+    if (D < 0) { std::swap(v[2], v[3]); std::swap(q[2], q[3]); }
+    const P e1q = sub(q[1], q[0]), e2q = sub(q[2], q[0]), e3q = sub(q[3], q[0]);
+    D = det3(e1q, e2q, e3q);
+    const P r{dotq(e1q, e1q) / 2, dotq(e2q, e2q) / 2, dotq(e3q, e3q) / 2};
+    const P c0{e1q[0], e2q[0], e3q[0]}, c1{e1q[1], e2q[1], e3q[1]}, c2{e1q[2], e2q[2], e3q[2]};
+    const P cc{q[0][0] + det3(r, c1, c2) / D, q[0][1] + det3(c0, r, c2) / D, q[0][2] + det3(c0, c1, r) / D};
+    Sign sg[4];
+    circumcenter_barycentric_signs(v[0], v[1], v[2], v[3], sg);
+    P t[4] = {cc, q[1], q[2], q[3]};
+    const int expect = CGAL::sign(det3(sub(t[1], t[0]), sub(t[2], t[0]), sub(t[3], t[0])));
+    ASSERT_EQ(static_cast<int>(sg[0]), expect) << "random apex " << iter;
+    ++near;
+  }
+  EXPECT_GT(zeros, 0);
+  EXPECT_GT(positives, 10);
+  EXPECT_GT(negatives, 10);
+  EXPECT_GT(near, 1500);
+}
+
 namespace {
 int rational_star_sign(const Point3& a, const Point3& b, const std::vector<Point3>& face,
                        const std::vector<Point3>& cell) {

@@ -96,53 +96,56 @@ Point3 circumcenter_with_signs(const Point3& a, const Point3& b, const Point3& c
   // share their cross products: with n = |u|^2 (v x w) + |v|^2 (w x u) + |w|^2 (u x v),
   // the numerators are n.(v x w), n.(w x u), n.(u x v) (each summed in the
   // order of circ_bary_numerator, so the bound is the same).
-  double val[4], mag[4];
+  // The numerator at a is not computed from its own order (b, a, d, c): the
+  // four numerators sum to 2 D^2 (the barycentrics sum to 1), so
+  // N_a = 2 D^2 - N_b - N_c - N_d, with the error bound of L9b (ibid.):
+  //   |fl(N_a) - N_a| <= 128 eps (|fl(N_a)| + P_D^2 + mag_b + mag_c + mag_d),
+  // P_D the permanent of D. bound[i]: the filter's bound for numerator i;
+  // range[i]: its magnitudes lie where no underflow or overflow can spoil it.
+  double val[4], bound[4];
+  int range[4];
   auto acr = [](const Vec3& x, const Vec3& y) {
     return Vec3{x.y * y.z + x.z * y.y, x.z * y.x + x.x * y.z, x.x * y.y + x.y * y.x};
   };
   auto fabs3 = [](const Vec3& x) { return Vec3{std::fabs(x.x), std::fabs(x.y), std::fabs(x.z)}; };
+  constexpr double eps = DBL_EPSILON / 2;
+  auto in_range = [](double m) { return int(m > 1e-200) & int(m < 1e200); };
   {
     const Vec3 u = b - a, v = c - a, w = d - a;
     const Vec3 au = fabs3(u), av = fabs3(v), aw = fabs3(w);
     const Vec3 vw = cross(v, w), wu = cross(w, u), uv = cross(u, v);
     const Vec3 avw = acr(av, aw), awu = acr(aw, au), auv = acr(au, av);
     const double nu = dot(u, u), nv = dot(v, v), nw = dot(w, w);
+    double mag[4];
     val[1] = nu * dot(vw, vw) + nv * dot(wu, vw) + nw * dot(uv, vw);
     mag[1] = nu * dot(avw, avw) + nv * dot(awu, avw) + nw * dot(auv, avw);
     val[2] = nv * dot(wu, wu) + nw * dot(uv, wu) + nu * dot(vw, wu);
     mag[2] = nv * dot(awu, awu) + nw * dot(auv, awu) + nu * dot(avw, awu);
     val[3] = nw * dot(uv, uv) + nu * dot(vw, uv) + nv * dot(wu, uv);
     mag[3] = nw * dot(auv, auv) + nu * dot(avw, auv) + nv * dot(awu, auv);
+    const double D = dot(u, vw), PD = dot(au, avw);
+    val[0] = 2.0 * D * D - (val[1] + val[2] + val[3]);
+    mag[0] = PD * PD;
+    for (int i = 1; i < 4; ++i) bound[i] = 64.0 * eps * mag[i];
+    bound[0] = 128.0 * eps * (std::fabs(val[0]) + mag[0] + mag[1] + mag[2] + mag[3]);
+    for (int i = 0; i < 4; ++i) range[i] = in_range(mag[i]);
     // Doubles only (not decisions): c - a = n / (2D), lambda_i = val_i / (2 D^2).
-    const double D = dot(u, vw);
     center = a + (nu * vw + nv * wu + nw * uv) / (2.0 * D);
     const double inv = 1.0 / (2.0 * D * D);
     for (int i = 1; i < 4; ++i) lambda[i] = val[i] * inv;
     lambda[0] = 1.0 - lambda[1] - lambda[2] - lambda[3];
   }
-  {
-    const Vec3 u = a - b, v = d - b, w = c - b;  // order (b, a, d, c)
-    const Vec3 au = fabs3(u), av = fabs3(v), aw = fabs3(w);
-    const Vec3 vw = cross(v, w), wu = cross(w, u), uv = cross(u, v);
-    const Vec3 avw = acr(av, aw), awu = acr(aw, au), auv = acr(au, av);
-    const double nu = dot(u, u), nv = dot(v, v), nw = dot(w, w);
-    val[0] = nu * dot(vw, vw) + nv * dot(wu, vw) + nw * dot(uv, vw);
-    mag[0] = nu * dot(avw, avw) + nv * dot(awu, avw) + nw * dot(auv, avw);
-  }
   // Each sign is a coin toss (is the circumcentre beyond this face?): taken as
   // the difference of two comparisons, with one branch for "all four decided".
   int decided = 1;
   for (int i = 0; i < 4; ++i) {
-    const double bound = 64.0 * (DBL_EPSILON / 2) * mag[i];
-    const int pos = val[i] > bound, neg = val[i] < -bound;
-    decided &= (pos | neg) & int(mag[i] > 1e-200) & int(mag[i] < 1e200);
+    const int pos = val[i] > bound[i], neg = val[i] < -bound[i];
+    decided &= (pos | neg) & range[i];
     out[i] = static_cast<Sign>(pos - neg);
   }
   if (decided) [[likely]] return center;
   for (int i = 0; i < 4; ++i) {
-    const double bound = 64.0 * (DBL_EPSILON / 2) * mag[i];
-    if (((int(val[i] > bound) | int(val[i] < -bound)) & int(mag[i] > 1e-200) & int(mag[i] < 1e200)) != 0)
-      continue;  // decided above
+    if (((int(val[i] > bound[i]) | int(val[i] < -bound[i])) & range[i]) != 0) continue;  // decided above
     const auto& q = perm[i];
     out[i] = filtered_sign(
         [&](auto zero) {
