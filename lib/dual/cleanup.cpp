@@ -97,19 +97,23 @@ CleanupResult cleanup_dual(PolyMesh& pm, const std::vector<std::pair<PointId, Po
   // tolerance, not a sign.
   if (collapse_length > 0) {
     const double lim2 = collapse_length * collapse_length;
+    // The length test comes first: it is almost always false, and the
+    // classes are then never loaded.
+    auto check = [&](std::uint32_t rp, std::uint32_t rq) {
+      if (norm2(pm.points[rp] - pm.points[rq]) < lim2 && rp != rq && pm.point_class[rp] == pm.point_class[rq])
+          [[unlikely]] {
+        uf.unite(rp, rq);
+        ++res.collapsed_points;
+        return uf.find(rq);
+      }
+      return rq;
+    };
+    const PointId* fp = pm.face_points.data();
     for (std::size_t f = 0; f < nf; ++f) {
       const std::size_t b = pm.face_offsets[f], e = pm.face_offsets[f + 1];
-      std::uint32_t rp = uf.find(pm.face_points[b].idx);
-      for (std::size_t i = b + 1; i <= e; ++i) {
-        std::uint32_t rq = uf.find(pm.face_points[i < e ? i : b].idx);
-        if (rp != rq && pm.point_class[rp] == pm.point_class[rq] && norm2(pm.points[rp] - pm.points[rq]) < lim2)
-            [[unlikely]] {
-          uf.unite(rp, rq);
-          ++res.collapsed_points;
-          rq = uf.find(rq);
-        }
-        rp = rq;
-      }
+      std::uint32_t rp = uf.find(fp[b].idx);
+      for (std::size_t i = b + 1; i < e; ++i) rp = check(rp, uf.find(fp[i].idx));
+      check(rp, uf.find(fp[b].idx));  // the closing edge
     }
   }
   // Rewrite the loops through the representatives. Only some faces change:
