@@ -14,6 +14,7 @@
 #include <map>
 #include <numeric>
 #include <set>
+#include <span>
 #include <unordered_map>
 
 #include "classify/spatial_order.h"
@@ -223,9 +224,16 @@ ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params, Cl
     return VertexId(c.remap[v]);
   };
 
-  // ---- given triangle tags
-  std::vector<std::int32_t> tri_given(nf, kNoTag);
+  // Everything below works on sparse lists: the model-face triangles (a few
+  // per cent of all triangles) and the candidate model edges (edges with a
+  // model-face triangle or a given tag), in increasing id order, so the
+  // components and tags come out in the same order as a pass over all ids.
+
+  // ---- given triangle tags (dense, looked up by triangle; none: no array)
+  std::vector<std::int32_t> tri_given;
+  auto given_of = [&](std::size_t f) { return tri_given.empty() ? kNoTag : tri_given[f]; };
   std::int32_t max_face_tag = 0;
+  if (!soup.triangles.empty()) tri_given.assign(nf, kNoTag);
   for (std::size_t i = 0; i < soup.triangles.size(); ++i) {
     const auto& t = soup.triangles[i];
     VertexId a = remap(t.v[0], "triangle", i), b = remap(t.v[1], "triangle", i),
@@ -245,19 +253,20 @@ ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params, Cl
     max_face_tag = std::max(max_face_tag, t.tag);
   }
 
-  // ---- model-face triangles and their grouping key
+  // ---- model-face triangles (mf[r]: the triangle of rank r) and their grouping key
   struct FaceKey {
     std::int32_t given, r0, r1;  // r1 = kNoTag on the external boundary
     auto operator<=>(const FaceKey&) const = default;
   };
-  std::vector<char> is_mf(nf, 0);
-  std::vector<FaceKey> key(nf);
+  std::vector<std::uint32_t> mf;
+  std::vector<FaceKey> key;  // by rank
   for (std::size_t f = 0; f < nf; ++f) {
     TetId t0 = m.triangle_tet(TriId(f), 0), t1 = m.triangle_tet(TriId(f), 1);
     std::int32_t r0 = m.region(t0), r1 = t1.valid() ? m.region(t1) : kNoTag;
     bool topo = !t1.valid() || r0 != r1;
-    if (!topo && tri_given[f] == kNoTag) continue;
-    if (topo && soup.full_classification && tri_given[f] == kNoTag) {
+    const std::int32_t given = given_of(f);
+    if (!topo && given == kNoTag) continue;
+    if (topo && soup.full_classification && given == kNoTag) {
       const auto& v = m.triangle(TriId(f));
       throw InputError(soup.source, "triangle " + vlist({m.input_vertex(v[0]), m.input_vertex(v[1]), m.input_vertex(v[2])}),
                        std::string("contradiction: the triangle lies ") +
@@ -266,57 +275,20 @@ ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params, Cl
                            " but the file classifies it on no model face");
     }
     if (r1 != kNoTag && r1 < r0) std::swap(r0, r1);
-    is_mf[f] = 1;
-    key[f] = {tri_given[f], r0, r1};
+    mf.push_back(std::uint32_t(f));
+    key.push_back({given, r0, r1});
   }
+  const std::size_t nmf = mf.size();
 
-  // ---- per-edge incidence of model-face triangles
-  std::vector<std::uint32_t> e_off(ne + 1, 0);
-  for (std::size_t f = 0; f < nf; ++f) {
-    if (!is_mf[f]) continue;
-    for (EdgeId e : triangle_edges(m, TriId(f))) ++e_off[e.idx + 1];
-  }
-  std::partial_sum(e_off.begin(), e_off.end(), e_off.begin());
-  std::vector<TriId> e_tris(e_off[ne]);
-  {
-    std::vector<std::uint32_t> fill(e_off.begin(), e_off.end() - 1);
-    for (std::size_t f = 0; f < nf; ++f)
-      if (is_mf[f])
-        for (EdgeId e : triangle_edges(m, TriId(f))) e_tris[fill[e.idx]++] = TriId(f);
-  }
-
-  // ---- model faces: union across edges with exactly two model-face triangles
-  UnionFind uf(nf);
-  for (std::size_t e = 0; e < ne; ++e) {
-    if (e_off[e + 1] - e_off[e] != 2) continue;
-    TriId f1 = e_tris[e_off[e]], f2 = e_tris[e_off[e] + 1];
-    if (!(key[f1.idx] == key[f2.idx])) continue;
-    if (tri_given[f1.idx] == kNoTag) {
-      const auto& ev = m.edge(EdgeId(e));
-      double ang = bend_angle(m.point(ev[0]), m.point(ev[1]), m.point(third_vertex(m, f1, EdgeId(e))),
-                              m.point(third_vertex(m, f2, EdgeId(e))));
-      if (ang > params.feature_angle_deg) continue;
-    }
-    uf.unite(f1.idx, f2.idx);
-  }
-  std::vector<std::int32_t> comp_of(nf, -1), comp_given;
-  std::vector<std::uint32_t> root_comp(nf, std::uint32_t(-1));
-  for (std::size_t f = 0; f < nf; ++f) {
-    if (!is_mf[f]) continue;
-    std::uint32_t r = uf.find(f);
-    if (root_comp[r] == std::uint32_t(-1)) {
-      root_comp[r] = std::uint32_t(comp_given.size());
-      comp_given.push_back(tri_given[f]);
-    }
-    comp_of[f] = std::int32_t(root_comp[r]);
-  }
-  std::vector<std::int32_t> face_tag = assign_tags(comp_given, max_face_tag);
-  auto& tri_class = TetMeshBuilder::triangle_class(m);
-  for (std::size_t f = 0; f < nf; ++f)
-    if (is_mf[f]) tri_class[f] = ModelRef{2, face_tag[comp_of[f]]};
-
-  // ---- model edges
-  std::vector<std::int32_t> edge_given(ne, kNoTag);
+  // ---- candidate edges: (edge, rank) incidences sorted by edge (ranks
+  // increasing within an edge), merged with the given edges.
+  struct EdgeTri { std::uint32_t e, r; };
+  std::vector<EdgeTri> et;
+  et.reserve(3 * nmf);
+  for (std::size_t r = 0; r < nmf; ++r)
+    for (EdgeId e : triangle_edges(m, TriId(mf[r]))) et.push_back({e.idx, std::uint32_t(r)});
+  std::sort(et.begin(), et.end(), [](EdgeTri x, EdgeTri y) { return x.e != y.e ? x.e < y.e : x.r < y.r; });
+  std::vector<std::pair<std::uint32_t, std::int32_t>> given_edges;  // (edge, tag), the last given wins
   std::int32_t max_edge_tag = 0;
   for (std::size_t i = 0; i < soup.edges.size(); ++i) {
     VertexId a = remap(soup.edges[i].v[0], "edge", i), b = remap(soup.edges[i].v[1], "edge", i);
@@ -326,36 +298,94 @@ ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params, Cl
     if (!e.valid())
       throw InputError(soup.source, "edge " + std::to_string(i + 1),
                        "edge " + vlist({soup.edges[i].v[0], soup.edges[i].v[1]}) + " is not an edge of any tet");
-    edge_given[e.idx] = soup.edges[i].tag;
+    given_edges.emplace_back(e.idx, soup.edges[i].tag);
     max_edge_tag = std::max(max_edge_tag, soup.edges[i].tag);
   }
-  std::vector<char> is_me(ne, 0);
-  // Distinct model-face tags around an edge, computed on demand (a stored
-  // vector per edge would dominate classify's memory peak).
-  auto edge_faces = [&](std::size_t e) {
+  std::stable_sort(given_edges.begin(), given_edges.end(),
+                   [](const auto& x, const auto& y) { return x.first < y.first; });
+  struct Cand {
+    std::uint32_t e, t0, t1;  // the edge; its model-face triangles are et[t0 .. t1)
+    std::int32_t given;       // given model-edge tag or kNoTag
+  };
+  std::vector<Cand> cand;
+  {
+    std::size_t i = 0, g = 0;
+    while (i < et.size() || g < given_edges.size()) {
+      const std::uint32_t e = std::min(i < et.size() ? et[i].e : UINT32_MAX,
+                                       g < given_edges.size() ? given_edges[g].first : UINT32_MAX);
+      Cand c{e, std::uint32_t(i), std::uint32_t(i), kNoTag};
+      while (i < et.size() && et[i].e == e) ++i;
+      c.t1 = std::uint32_t(i);
+      while (g < given_edges.size() && given_edges[g].first == e) c.given = given_edges[g++].second;
+      cand.push_back(c);
+    }
+  }
+  const std::size_t nc = cand.size();
+
+  // ---- model faces: union across edges with exactly two model-face triangles
+  UnionFind uf(nmf);
+  for (const Cand& c : cand) {
+    if (c.t1 - c.t0 != 2) continue;
+    const std::uint32_t f1 = et[c.t0].r, f2 = et[c.t0 + 1].r;
+    if (!(key[f1] == key[f2])) continue;
+    if (key[f1].given == kNoTag) {
+      const auto ev = m.edge(EdgeId(c.e));
+      double ang = bend_angle(m.point(ev[0]), m.point(ev[1]), m.point(third_vertex(m, TriId(mf[f1]), EdgeId(c.e))),
+                              m.point(third_vertex(m, TriId(mf[f2]), EdgeId(c.e))));
+      if (ang > params.feature_angle_deg) continue;
+    }
+    uf.unite(f1, f2);
+  }
+  std::vector<std::int32_t> comp_of(nmf, -1), comp_given;
+  std::vector<std::uint32_t> root_comp(nmf, std::uint32_t(-1));
+  for (std::size_t r = 0; r < nmf; ++r) {
+    const std::uint32_t root = uf.find(r);
+    if (root_comp[root] == std::uint32_t(-1)) {
+      root_comp[root] = std::uint32_t(comp_given.size());
+      comp_given.push_back(key[r].given);
+    }
+    comp_of[r] = std::int32_t(root_comp[root]);
+  }
+  std::vector<std::int32_t> face_tag = assign_tags(comp_given, max_face_tag);
+  auto& tri_class = TetMeshBuilder::triangle_class(m);
+  for (std::size_t r = 0; r < nmf; ++r) tri_class[mf[r]] = ModelRef{2, face_tag[comp_of[r]]};
+
+  // ---- model edges
+  std::vector<char> is_me(nc, 0);
+  // Distinct model-face tags around a candidate edge, computed on demand.
+  auto edge_faces = [&](std::size_t ci) {
     std::vector<std::int32_t> tags;
-    for (std::uint32_t k = e_off[e]; k < e_off[e + 1]; ++k) tags.push_back(tri_class[e_tris[k].idx].tag);
+    for (std::uint32_t k = cand[ci].t0; k < cand[ci].t1; ++k) tags.push_back(tri_class[mf[et[k].r]].tag);
     std::sort(tags.begin(), tags.end());
     tags.erase(std::unique(tags.begin(), tags.end()), tags.end());
     return tags;
   };
-  for (std::size_t e = 0; e < ne; ++e) {
-    const std::vector<std::int32_t> tags = e_off[e + 1] > e_off[e] ? edge_faces(e) : std::vector<std::int32_t>{};
-    const std::uint32_t n = e_off[e + 1] - e_off[e];
+  for (std::size_t ci = 0; ci < nc; ++ci) {
+    const std::uint32_t n = cand[ci].t1 - cand[ci].t0;
+    const std::vector<std::int32_t> tags = n > 0 ? edge_faces(ci) : std::vector<std::int32_t>{};
     bool topo = n > 0 && (n != 2 || tags.size() >= 2);
-    if (topo && soup.full_classification && !soup.edges.empty() && edge_given[e] == kNoTag) {
-      const auto& v = m.edge(EdgeId(e));
+    if (topo && soup.full_classification && !soup.edges.empty() && cand[ci].given == kNoTag) {
+      const auto v = m.edge(EdgeId(cand[ci].e));
       throw InputError(soup.source, "edge " + vlist({m.input_vertex(v[0]), m.input_vertex(v[1])}),
                        "contradiction: model faces meet at this edge but the file classifies it on no model edge");
     }
-    is_me[e] = topo || edge_given[e] != kNoTag;
+    is_me[ci] = topo || cand[ci].given != kNoTag;
   }
-  // Per-vertex incident model edges.
-  std::vector<std::vector<EdgeId>> v_me(nv);
-  for (std::size_t e = 0; e < ne; ++e)
-    if (is_me[e])
-      for (VertexId v : m.edge(EdgeId(e))) v_me[v.idx].push_back(EdgeId(e));
-  auto edge_key = [&](EdgeId e) { return std::make_pair(edge_given[e.idx], edge_faces(e.idx)); };
+  // Per-vertex incident model edges (CSR of candidate indices, increasing).
+  std::vector<std::uint32_t> vme_off(nv + 1, 0), vme;
+  for (std::size_t ci = 0; ci < nc; ++ci)
+    if (is_me[ci])
+      for (VertexId v : m.edge(EdgeId(cand[ci].e))) ++vme_off[v.idx + 1];
+  std::partial_sum(vme_off.begin(), vme_off.end(), vme_off.begin());
+  vme.resize(vme_off[nv]);
+  {
+    std::vector<std::uint32_t> fill(vme_off.begin(), vme_off.end() - 1);
+    for (std::size_t ci = 0; ci < nc; ++ci)
+      if (is_me[ci])
+        for (VertexId v : m.edge(EdgeId(cand[ci].e))) vme[fill[v.idx]++] = std::uint32_t(ci);
+  }
+  auto v_me = [&](std::size_t v) { return std::span<const std::uint32_t>(vme.data() + vme_off[v], vme.data() + vme_off[v + 1]); };
+  auto edge_key = [&](std::uint32_t ci) { return std::make_pair(cand[ci].given, edge_faces(ci)); };
 
   // ---- model vertices
   std::vector<std::int32_t> corner_given(nv, kNoTag);
@@ -369,25 +399,25 @@ ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params, Cl
   // Distinct model faces at each vertex (for vertices where faces touch without an edge).
   std::vector<std::int32_t> v_face(nv, kNoTag);
   std::vector<char> v_multi_face(nv, 0);
-  for (std::size_t f = 0; f < nf; ++f) {
-    if (!is_mf[f]) continue;
-    for (VertexId v : m.triangle(TriId(f))) {
-      std::int32_t t = tri_class[f].tag;
+  for (std::size_t r = 0; r < nmf; ++r) {
+    const std::int32_t t = tri_class[mf[r]].tag;
+    for (VertexId v : m.triangle(TriId(mf[r]))) {
       if (v_face[v.idx] == kNoTag) v_face[v.idx] = t;
       else if (v_face[v.idx] != t) v_multi_face[v.idx] = 1;
     }
   }
   for (std::size_t v = 0; v < nv; ++v) {
-    const auto& es = v_me[v];
+    const auto es = v_me(v);
     bool mv = corner_given[v] != kNoTag;
     if (es.empty()) {
       mv = mv || v_multi_face[v];
     } else if (es.size() != 2 || edge_key(es[0]) != edge_key(es[1])) {
       mv = true;
-    } else if (edge_given[es[0].idx] == kNoTag) {
+    } else if (cand[es[0]].given == kNoTag) {
       // Sharp corner between two model-edge segments (double geometry).
-      VertexId a = m.edge(es[0])[0] == VertexId(v) ? m.edge(es[0])[1] : m.edge(es[0])[0];
-      VertexId b = m.edge(es[1])[0] == VertexId(v) ? m.edge(es[1])[1] : m.edge(es[1])[0];
+      const auto e0 = m.edge(EdgeId(cand[es[0]].e)), e1 = m.edge(EdgeId(cand[es[1]].e));
+      VertexId a = e0[0] == VertexId(v) ? e0[1] : e0[0];
+      VertexId b = e1[0] == VertexId(v) ? e1[1] : e1[0];
       Vec3 d1 = m.point(VertexId(v)) - m.point(a), d2 = m.point(b) - m.point(VertexId(v));
       double cs = dot(d1, d2) / (norm(d1) * norm(d2));
       if (std::acos(std::clamp(cs, -1.0, 1.0)) * 180.0 / M_PI > params.feature_angle_deg) mv = true;
@@ -396,31 +426,29 @@ ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params, Cl
   }
   // Model edges: components of model-edge primal edges with equal keys, joined
   // at vertices that are not model vertices.
-  UnionFind ue(ne);
+  UnionFind ue(nc);
   for (std::size_t v = 0; v < nv; ++v)
-    if (!is_mv[v] && v_me[v].size() == 2) ue.unite(v_me[v][0].idx, v_me[v][1].idx);
-  std::vector<std::int32_t> ecomp(ne, -1), ecomp_given;
-  std::vector<std::uint32_t> eroot(ne, std::uint32_t(-1));
-  for (std::size_t e = 0; e < ne; ++e) {
-    if (!is_me[e]) continue;
-    std::uint32_t r = ue.find(e);
+    if (!is_mv[v] && v_me(v).size() == 2) ue.unite(v_me(v)[0], v_me(v)[1]);
+  std::vector<std::int32_t> ecomp(nc, -1), ecomp_given;
+  std::vector<std::uint32_t> eroot(nc, std::uint32_t(-1));
+  for (std::size_t ci = 0; ci < nc; ++ci) {
+    if (!is_me[ci]) continue;
+    std::uint32_t r = ue.find(ci);
     if (eroot[r] == std::uint32_t(-1)) {
       eroot[r] = std::uint32_t(ecomp_given.size());
-      ecomp_given.push_back(edge_given[e]);
+      ecomp_given.push_back(cand[ci].given);
     }
-    ecomp[e] = std::int32_t(eroot[r]);
+    ecomp[ci] = std::int32_t(eroot[r]);
   }
   std::vector<std::int32_t> edge_tag = assign_tags(ecomp_given, max_edge_tag);
   auto& edge_class = TetMeshBuilder::edge_class(m);
-  for (std::size_t e = 0; e < ne; ++e) {
-    if (is_me[e]) {
-      edge_class[e] = ModelRef{1, edge_tag[ecomp[e]]};
-    } else if (e_off[e + 1] > e_off[e]) {
-      edge_class[e] = ModelRef{2, tri_class[e_tris[e_off[e]].idx].tag};
-    } else {
-      // an edge with no model-face triangle lies in one region: any of its tets
-      edge_class[e] = ModelRef{3, m.region(m.edge_tet(EdgeId(e)))};
-    }
+  // An edge with no model-face triangle lies in one region: any of its tets.
+  for (std::size_t e = 0; e < ne; ++e) edge_class[e] = ModelRef{3, m.region(m.edge_tet(EdgeId(e)))};
+  for (std::size_t ci = 0; ci < nc; ++ci) {
+    if (is_me[ci])
+      edge_class[cand[ci].e] = ModelRef{1, edge_tag[ecomp[ci]]};
+    else if (cand[ci].t1 > cand[ci].t0)
+      edge_class[cand[ci].e] = ModelRef{2, tri_class[mf[et[cand[ci].t0].r]].tag};
   }
   std::vector<std::int32_t> vgiven;
   std::vector<std::uint32_t> mv_list;
@@ -431,7 +459,7 @@ ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params, Cl
   for (std::size_t i = 0; i < mv_list.size(); ++i) vclass[mv_list[i]] = ModelRef{0, vtag[i]};
   for (std::size_t v = 0; v < nv; ++v) {
     if (is_mv[v]) continue;
-    if (!v_me[v].empty()) vclass[v] = edge_class[v_me[v][0].idx];
+    if (!v_me(v).empty()) vclass[v] = edge_class[cand[v_me(v)[0]].e];
     else if (v_face[v] != kNoTag) vclass[v] = ModelRef{2, v_face[v]};
     else vclass[v] = ModelRef{3, m.region(m.vertex_tets(VertexId(v)).front())};
   }
@@ -446,24 +474,23 @@ ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params, Cl
     r.dim = 3;
     r.tag = tag;
   }
-  for (std::size_t f = 0; f < nf; ++f) {
-    if (!is_mf[f]) continue;
-    auto& e = faces[tri_class[f].tag];
+  for (std::size_t r = 0; r < nmf; ++r) {
+    auto& e = faces[tri_class[mf[r]].tag];
     if (e.regions.empty()) {
       e.dim = 2;
-      e.tag = tri_class[f].tag;
-      e.regions.push_back(key[f].r0);
-      if (key[f].r1 != kNoTag) e.regions.push_back(key[f].r1);
+      e.tag = tri_class[mf[r]].tag;
+      e.regions.push_back(key[r].r0);
+      if (key[r].r1 != kNoTag) e.regions.push_back(key[r].r1);
       e.bounds = e.regions;
       e.bounds.erase(std::unique(e.bounds.begin(), e.bounds.end()), e.bounds.end());
     }
   }
-  for (std::size_t e = 0; e < ne; ++e) {
-    if (!is_me[e]) continue;
-    auto& me = edges[edge_class[e].tag];
+  for (std::size_t ci = 0; ci < nc; ++ci) {
+    if (!is_me[ci]) continue;
+    auto& me = edges[edge_class[cand[ci].e].tag];
     me.dim = 1;
-    me.tag = edge_class[e].tag;
-    const std::vector<std::int32_t> tags = edge_faces(e);
+    me.tag = edge_class[cand[ci].e].tag;
+    const std::vector<std::int32_t> tags = edge_faces(ci);
     me.bounds.insert(me.bounds.end(), tags.begin(), tags.end());
   }
   for (std::size_t v = 0; v < nv; ++v) {
@@ -471,7 +498,7 @@ ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params, Cl
     auto& mv = verts[vclass[v].tag];
     mv.dim = 0;
     mv.tag = vclass[v].tag;
-    for (EdgeId e : v_me[v]) mv.bounds.push_back(edge_class[e.idx].tag);
+    for (std::uint32_t ci : v_me(v)) mv.bounds.push_back(edge_class[cand[ci].e].tag);
   }
   auto finish = [](std::map<std::int32_t, ModelEntity>& src, std::vector<ModelEntity>& dst) {
     dst.clear();
