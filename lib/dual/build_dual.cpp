@@ -64,6 +64,7 @@ struct DualPoints {
   SparsePoints edge_point;          // model-edge edges
   std::vector<PointId> vert_point;  // per vertex (model vertices only)
   std::vector<char> tet_well_centred;
+  std::vector<double> tet_centre_error;  // CentralPoint::error of well-centred tets
   std::vector<char> tri_well_centred;  // by rank among the model-face triangles
 };
 
@@ -74,6 +75,7 @@ DualPoints make_points(const ClassifiedTetMesh& m, PolyMesh& pm, DualStats& st) 
   pm.points.resize(nt);
   pm.point_class.resize(nt);
   d.tet_well_centred.assign(nt, 0);
+  d.tet_centre_error.resize(nt);
   // Independent per tet: parallel, and the same result for any thread count.
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nt, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t t = r.begin(); t < r.end(); ++t) {
@@ -82,6 +84,7 @@ DualPoints make_points(const ClassifiedTetMesh& m, PolyMesh& pm, DualStats& st) 
       pm.points[t] = c.p;
       pm.point_class[t] = ModelRef{3, m.region(TetId(t))};
       d.tet_well_centred[t] = c.well_centred;
+      d.tet_centre_error[t] = c.error;
     }
   });
   st.well_centred_tets = std::size_t(std::count(d.tet_well_centred.begin(), d.tet_well_centred.end(), 1));
@@ -313,6 +316,12 @@ std::vector<std::pair<PointId, PointId>> exact_coincidences(const ClassifiedTetM
       const TetId t0(cand[k] >> 2);
       const int i = int(cand[k] & 3);
       const TetId t1 = m.tet_neighbor(t0, i);
+      // Cospherical (sharing a face) iff the exact circumcentres coincide. If
+      // the rounded centres differ by more than their error bounds (L9c), they
+      // do not: no insphere test needed. Otherwise the exact test decides.
+      const Point3 &c0 = pm.points[t0.idx], &c1 = pm.points[t1.idx];
+      const double tol = 1.001 * (d.tet_centre_error[t0.idx] + d.tet_centre_error[t1.idx]);
+      if (std::fabs(c0.x - c1.x) > tol || std::fabs(c0.y - c1.y) > tol || std::fabs(c0.z - c1.z) > tol) continue;
       const auto& a = m.tet(t0);
       const VertexId far = m.tet(t1)[m.tet_neighbor_face(t0, i)];
       if (insphere(m.point(a[0]), m.point(a[1]), m.point(a[2]), m.point(a[3]), m.point(far)) == Sign::Zero)
@@ -341,7 +350,6 @@ std::vector<std::pair<PointId, PointId>> exact_coincidences(const ClassifiedTetM
       if (s == Sign::Zero) pairs.emplace_back(d.tri_point[first[e.idx].idx], d.tri_point[fi]);
     }
   }
-  (void)pm;
   return pairs;
 }
 
@@ -431,6 +439,7 @@ PolyMesh build_dual(const ClassifiedTetMesh& m, const DualParams& params, DualSt
     collapse = params.collapse_tolerance * mean_edge_length(m);
   }
   d.tet_well_centred = std::vector<char>();
+  d.tet_centre_error = std::vector<double>();
   d.tri_well_centred = std::vector<char>();
   st.seconds_cleanup = since(t0);
 

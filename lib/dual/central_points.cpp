@@ -19,12 +19,12 @@ CentralPoint tet_central_point(const Point3& a, const Point3& b, const Point3& c
   // (rounded), the exact well-centred signs and the barycentric coordinates
   // in doubles, all from the same products.
   Sign s[4];
-  double lam[4];
-  const Point3 cc = circumcenter_with_signs(a, b, c, d, s, lam);
+  double lam[4], error;
+  const Point3 cc = circumcenter_with_signs(a, b, c, d, s, lam, &error);
   // One branch (well-centred or not is a coin toss), not four.
   if ((int(s[0] != Sign::Negative) & int(s[1] != Sign::Negative) & int(s[2] != Sign::Negative) &
        int(s[3] != Sign::Negative)) != 0)
-    return {cc, true};
+    return {cc, true, error};
   const Vec3 u = b - a, v = c - a, w = d - a;
   // Largest t in [0,1] with centroid + t (cc - centroid) in the tet: for each
   // negative lambda_i, 1/4 + t (lambda_i - 1/4) >= 0.

@@ -9,6 +9,9 @@ namespace polydual {
 struct CentralPoint {
   Point3 p;
   bool well_centred = false;  // EXACT: the closed simplex contains its circumcenter
+  // For a well-centred tet: a bound on max_k |p_k - exact circumcentre_k|
+  // (proofs/star_filter.md, L9c), or +infinity; unused otherwise.
+  double error = 0;
 };
 
 // The circumcenter if the closed tet contains it (decided exactly), otherwise

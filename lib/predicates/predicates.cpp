@@ -8,6 +8,8 @@
 
 #include <cfloat>
 #include <cmath>
+#include <limits>
+#include <algorithm>
 #include <vector>
 
 namespace polydual {
@@ -82,7 +84,7 @@ void circumcenter_barycentric_signs(const Point3& a, const Point3& b, const Poin
 }
 
 Point3 circumcenter_with_signs(const Point3& a, const Point3& b, const Point3& c, const Point3& d, Sign out[4],
-                               double lambda[4]) {
+                               double lambda[4], double* error) {
   auto& cnt = predicate_counters();
   Point3 center;
   // Orientation-preserving orders that bring each vertex to slot 1 of
@@ -130,7 +132,30 @@ Point3 circumcenter_with_signs(const Point3& a, const Point3& b, const Point3& c
     bound[0] = 128.0 * eps * (std::fabs(val[0]) + mag[0] + mag[1] + mag[2] + mag[3]);
     for (int i = 0; i < 4; ++i) range[i] = in_range(mag[i]);
     // Doubles only (not decisions): c - a = n / (2D), lambda_i = val_i / (2 D^2).
-    center = a + (nu * vw + nv * wu + nw * uv) / (2.0 * D);
+    const Vec3 n = nu * vw + nv * wu + nw * uv;
+    const Vec3 q = n / (2.0 * D);
+    center = a + q;
+    if (error) {
+      // L9c: with e_D = 9 eps P_D and e_n = 13 eps N_k (N the tree of n on
+      // absolute values), |D| >= |D~| - e_D =: Dl > 0 and, per coordinate,
+      //   |c~_k - c_k| <= (e_n + (|n~_k| + e_n) e_D / Dl) / (2 |D~|) + 1.01 eps (|q~_k| + |c~_k|),
+      // doubled for the rounding of this bound. Magnitudes are kept in
+      // (1e-100, 1e100); e_n and e_D carry absolute terms for underflow.
+      const Vec3 N = nu * avw + nv * awu + nw * auv;
+      const double eD = 9.0 * eps * PD + 1e-250, Dl = std::fabs(D) - eD;
+      const double big = std::max({N.x, N.y, N.z, PD});
+      if (!(PD > 1e-100 && big < 1e100 && Dl > 0.5 * std::fabs(D))) {
+        *error = std::numeric_limits<double>::infinity();
+      } else {
+        auto coord = [&](double nk, double Nk, double qk, double ck) {
+          const double en = 13.0 * eps * Nk + 1e-240;
+          return (en + (std::fabs(nk) + en) * eD / Dl) / (2.0 * std::fabs(D)) +
+                 1.01 * eps * (std::fabs(qk) + std::fabs(ck));
+        };
+        *error = 2.0 * std::max({coord(n.x, N.x, q.x, center.x), coord(n.y, N.y, q.y, center.y),
+                                 coord(n.z, N.z, q.z, center.z)});
+      }
+    }
     const double inv = 1.0 / (2.0 * D * D);
     for (int i = 1; i < 4; ++i) lambda[i] = val[i] * inv;
     lambda[0] = 1.0 - lambda[1] - lambda[2] - lambda[3];
