@@ -106,6 +106,10 @@ Point3 circumcenter_with_signs(const Point3& a, const Point3& b, const Point3& c
   // range[i]: its magnitudes lie where no underflow or overflow can spoil it.
   double val[4], bound[4];
   int range[4];
+  // Kept for the centre's error bound (L9c), computed at the end only for a
+  // well-centred tet (the only ones whose centres are compared).
+  Vec3 n_val, n_abs, q_val;
+  double D_val = 0, PD_val = 0;
   auto acr = [](const Vec3& x, const Vec3& y) {
     return Vec3{x.y * y.z + x.z * y.y, x.z * y.x + x.x * y.z, x.x * y.y + x.y * y.x};
   };
@@ -136,30 +140,34 @@ Point3 circumcenter_with_signs(const Point3& a, const Point3& b, const Point3& c
     const Vec3 q = n / (2.0 * D);
     center = a + q;
     if (error) {
-      // L9c: with e_D = 9 eps P_D and e_n = 13 eps N_k (N the tree of n on
-      // absolute values), |D| >= |D~| - e_D =: Dl > 0 and, per coordinate,
-      //   |c~_k - c_k| <= (e_n + (|n~_k| + e_n) e_D / Dl) / (2 |D~|) + 1.01 eps (|q~_k| + |c~_k|),
-      // doubled for the rounding of this bound. Magnitudes are kept in
-      // (1e-100, 1e100); e_n and e_D carry absolute terms for underflow.
-      const Vec3 N = nu * avw + nv * awu + nw * auv;
-      const double eD = 9.0 * eps * PD + 1e-250, Dl = std::fabs(D) - eD;
-      const double big = std::max({N.x, N.y, N.z, PD});
-      if (!(PD > 1e-100 && big < 1e100 && Dl > 0.5 * std::fabs(D))) {
-        *error = std::numeric_limits<double>::infinity();
-      } else {
-        auto coord = [&](double nk, double Nk, double qk, double ck) {
-          const double en = 13.0 * eps * Nk + 1e-240;
-          return (en + (std::fabs(nk) + en) * eD / Dl) / (2.0 * std::fabs(D)) +
-                 1.01 * eps * (std::fabs(qk) + std::fabs(ck));
-        };
-        *error = 2.0 * std::max({coord(n.x, N.x, q.x, center.x), coord(n.y, N.y, q.y, center.y),
-                                 coord(n.z, N.z, q.z, center.z)});
-      }
+      n_val = n;
+      n_abs = nu * avw + nv * awu + nw * auv;
+      q_val = q;
+      D_val = D;
+      PD_val = PD;
     }
     const double inv = 1.0 / (2.0 * D * D);
     for (int i = 1; i < 4; ++i) lambda[i] = val[i] * inv;
     lambda[0] = 1.0 - lambda[1] - lambda[2] - lambda[3];
   }
+  // L9c: with e_D = 9 eps P_D and e_n = 13 eps N_k (N the tree of n on
+  // absolute values), |D| >= |D~| - e_D =: Dl > 0 and, per coordinate,
+  //   |c~_k - c_k| <= (e_n + (|n~_k| + e_n) e_D / Dl) / (2 |D~|) + 1.01 eps (|q~_k| + |c~_k|),
+  // doubled for the rounding of this bound. Magnitudes are kept in
+  // (1e-100, 1e100); e_n and e_D carry absolute terms for underflow.
+  auto centre_error = [&]() {
+    const double eD = 9.0 * eps * PD_val + 1e-250, aD = std::fabs(D_val), Dl = aD - eD;
+    const double big = std::max(std::max(n_abs.x, n_abs.y), std::max(n_abs.z, PD_val));
+    if (!(PD_val > 1e-100 && big < 1e100 && Dl > 0.5 * aD)) return std::numeric_limits<double>::infinity();
+    const double ratio = eD / Dl, inv = 1.0 / (2.0 * aD);
+    auto coord = [&](double nk, double Nk, double qk, double ck) {
+      const double en = 13.0 * eps * Nk + 1e-240;
+      return (en + (std::fabs(nk) + en) * ratio) * inv + 1.01 * eps * (std::fabs(qk) + std::fabs(ck));
+    };
+    // inv and ratio are rounded too: the factor 2 covers them with the rest.
+    return 2.0 * std::max(std::max(coord(n_val.x, n_abs.x, q_val.x, center.x), coord(n_val.y, n_abs.y, q_val.y, center.y)),
+                          coord(n_val.z, n_abs.z, q_val.z, center.z));
+  };
   // Each sign is a coin toss (is the circumcentre beyond this face?): taken as
   // the difference of two comparisons, with one branch for "all four decided".
   int decided = 1;
@@ -168,7 +176,14 @@ Point3 circumcenter_with_signs(const Point3& a, const Point3& b, const Point3& c
     decided &= (pos | neg) & range[i];
     out[i] = static_cast<Sign>(pos - neg);
   }
-  if (decided) [[likely]] return center;
+  if (decided) [[likely]] {
+    if (error)
+      *error = (int(out[0] != Sign::Negative) & int(out[1] != Sign::Negative) & int(out[2] != Sign::Negative) &
+                int(out[3] != Sign::Negative))
+                   ? centre_error()
+                   : std::numeric_limits<double>::infinity();
+    return center;
+  }
   for (int i = 0; i < 4; ++i) {
     if (((int(val[i] > bound[i]) | int(val[i] < -bound[i])) & range[i]) != 0) continue;  // decided above
     const auto& q = perm[i];
@@ -179,6 +194,7 @@ Point3 circumcenter_with_signs(const Point3& a, const Point3& b, const Point3& c
         },
         cnt.circ_exact);
   }
+  if (error) *error = centre_error();
   return center;
 }
 

@@ -32,9 +32,10 @@ void circumcenter_barycentric_signs(const Point3& a, const Point3& b, const Poin
 // The same signs (EXACT), plus what tet_central_point needs in doubles from
 // the same products: the rounded circumcenter (returned) and approximations of
 // the four barycentric coordinates (lambda, summing to 1; NOT exact).
-// If `error` is given, *error bounds max_k |rounded centre_k - exact centre_k|
-// (the exact circumcentre of the double inputs; proofs/star_filter.md, L9c),
-// or is +infinity where no bound is derived (near-flat or extreme magnitudes).
+// If `error` is given and the tet is well-centred (no sign Negative), *error
+// bounds max_k |rounded centre_k - exact centre_k| (the exact circumcentre of
+// the double inputs; proofs/star_filter.md, L9c); it is +infinity for other
+// tets and where no bound is derived (near-flat or extreme magnitudes).
 Point3 circumcenter_with_signs(const Point3& a, const Point3& b, const Point3& c, const Point3& d, Sign out[4],
                                double lambda[4], double* error = nullptr);
 
