@@ -108,8 +108,7 @@ Point3 circumcenter_with_signs(const Point3& a, const Point3& b, const Point3& c
   int range[4];
   // Kept for the centre's error bound (L9c), computed at the end only for a
   // well-centred tet (the only ones whose centres are compared).
-  Vec3 n_val, n_abs, q_val;
-  double D_val = 0, PD_val = 0;
+  double D_val = 0, PD_val = 0, N_star = 0;
   auto acr = [](const Vec3& x, const Vec3& y) {
     return Vec3{x.y * y.z + x.z * y.y, x.z * y.x + x.x * y.z, x.x * y.y + x.y * y.x};
   };
@@ -139,34 +138,27 @@ Point3 circumcenter_with_signs(const Point3& a, const Point3& b, const Point3& c
     const Vec3 n = nu * vw + nv * wu + nw * uv;
     const Vec3 q = n / (2.0 * D);
     center = a + q;
-    if (error) {
-      n_val = n;
-      n_abs = nu * avw + nv * awu + nw * auv;
-      q_val = q;
-      D_val = D;
-      PD_val = PD;
-    }
+    D_val = D;
+    PD_val = PD;
+    // N* >= every coordinate of n's tree on absolute values.
+    N_star = (nu + nv + nw) * ((avw.x + avw.y + avw.z) + (awu.x + awu.y + awu.z) + (auv.x + auv.y + auv.z));
     const double inv = 1.0 / (2.0 * D * D);
     for (int i = 1; i < 4; ++i) lambda[i] = val[i] * inv;
     lambda[0] = 1.0 - lambda[1] - lambda[2] - lambda[3];
   }
-  // L9c: with e_D = 9 eps P_D and e_n = 13 eps N_k (N the tree of n on
-  // absolute values), |D| >= |D~| - e_D =: Dl > 0 and, per coordinate,
-  //   |c~_k - c_k| <= (e_n + (|n~_k| + e_n) e_D / Dl) / (2 |D~|) + 1.01 eps (|q~_k| + |c~_k|),
-  // doubled for the rounding of this bound. Magnitudes are kept in
-  // (1e-100, 1e100); e_n and e_D carry absolute terms for underflow.
+  // L9c: with e_D = 9 eps P_D, e_n = 13 eps N* (N* bounding every coordinate
+  // of n's tree on absolute values, so |n~_k| <= N* too) and Dl = |D~| - e_D > 0,
+  //   |c~_k - c_k| <= (e_n + (N* + e_n) e_D / Dl) / (2 |D~|) + 1.01 eps (|q~_k| + |c~_k|),
+  // |q~_k| <= 1.01 N* / (2 |D~|); doubled for the rounding of the bound itself.
+  // Magnitudes are kept in (1e-100, 1e100); e_n and e_D carry absolute terms
+  // for underflow residues.
   auto centre_error = [&]() {
     const double eD = 9.0 * eps * PD_val + 1e-250, aD = std::fabs(D_val), Dl = aD - eD;
-    const double big = std::max(std::max(n_abs.x, n_abs.y), std::max(n_abs.z, PD_val));
-    if (!(PD_val > 1e-100 && big < 1e100 && Dl > 0.5 * aD)) return std::numeric_limits<double>::infinity();
-    const double ratio = eD / Dl, inv = 1.0 / (2.0 * aD);
-    auto coord = [&](double nk, double Nk, double qk, double ck) {
-      const double en = 13.0 * eps * Nk + 1e-240;
-      return (en + (std::fabs(nk) + en) * ratio) * inv + 1.01 * eps * (std::fabs(qk) + std::fabs(ck));
-    };
-    // inv and ratio are rounded too: the factor 2 covers them with the rest.
-    return 2.0 * std::max(std::max(coord(n_val.x, n_abs.x, q_val.x, center.x), coord(n_val.y, n_abs.y, q_val.y, center.y)),
-                          coord(n_val.z, n_abs.z, q_val.z, center.z));
+    if (!(PD_val > 1e-100 && PD_val < 1e100 && N_star < 1e100 && Dl > 0.5 * aD))
+      return std::numeric_limits<double>::infinity();
+    const double inv = 1.0 / (2.0 * aD), en = 13.0 * eps * N_star + 1e-240;
+    const double cmax = std::max(std::max(std::fabs(center.x), std::fabs(center.y)), std::fabs(center.z));
+    return 2.0 * ((en + (N_star + en) * (eD / Dl)) * inv + 1.01 * eps * (1.01 * N_star * inv + cmax));
   };
   // Each sign is a coin toss (is the circumcentre beyond this face?): taken as
   // the difference of two comparisons, with one branch for "all four decided".
