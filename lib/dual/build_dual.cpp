@@ -52,6 +52,14 @@ class SparsePoints {
     return prefix_[i >> 6] + std::uint32_t(std::popcount(below));
   }
   PointId operator[](std::size_t i) const { return has(i) ? PointId(first_ + rank(i)) : PointId::invalid(); }
+  // Calls f(i, rank of i) for the set entities in increasing order (64 at a
+  // time: the unset ones cost nothing).
+  template <class F>
+  void for_each(F&& f) const {
+    std::uint32_t r = 0;
+    for (std::size_t b = 0; b < bits_.size(); ++b)
+      for (std::uint64_t w = bits_[b]; w != 0; w &= w - 1) f(64 * b + std::size_t(std::countr_zero(w)), r++);
+  }
 
  private:
   std::vector<std::uint64_t> bits_;
@@ -328,27 +336,32 @@ std::vector<std::pair<PointId, PointId>> exact_coincidences(const ClassifiedTetM
         pairs.emplace_back(PointId(t0.idx), PointId(t1.idx));
     }
   }
-  // Pairs of model-face triangles sharing an edge that is not a model edge
-  // (such an edge has exactly two, of one model face).
-  std::vector<TriId> first(m.num_edges(), TriId::invalid());
-  for (std::size_t fi = 0; fi < m.num_triangles(); ++fi) {
+  // Pairs of well-centred model-face triangles sharing an edge that is not a
+  // model edge (such an edge has exactly two, of one model face): their
+  // (edge, triangle, opposite vertex) records sorted by edge pair up.
+  struct Rec { std::uint32_t e, f; VertexId opp; };
+  std::vector<Rec> recs;
+  d.tri_point.for_each([&](std::size_t fi, std::uint32_t rank) {
+    if (!d.tri_well_centred[rank]) return;
     const TriId f(fi);
-    if (!m.on_model_face(f) || !d.tri_well_centred[d.tri_point.rank(fi)]) continue;
-    const auto& tv = m.triangle(f);
+    const auto tv = m.triangle(f);
     for (int k = 0; k < 3; ++k) {
       const EdgeId e = m.triangle_edge(f, tv[k], tv[(k + 1) % 3]);
-      if (m.edge_class(e).dim != 2) continue;
-      if (!first[e.idx].valid()) { first[e.idx] = f; continue; }
-      const auto& t = m.triangle(first[e.idx]);
-      const Point3 &A = m.point(t[0]), &B = m.point(t[1]), &C = m.point(t[2]);
-      const Point3& P = m.point(tv[(k + 2) % 3]);
-      if (orient3d(A, B, C, P) != Sign::Zero) continue;
-      const Point3 E = A + cross(B - A, C - A);  // off the plane (checked exactly below)
-      const Sign o = orient3d(A, B, C, E);
-      if (o == Sign::Zero) continue;
-      const Sign s = o == Sign::Positive ? insphere(A, B, C, E, P) : insphere(A, C, B, E, P);
-      if (s == Sign::Zero) pairs.emplace_back(d.tri_point[first[e.idx].idx], d.tri_point[fi]);
+      if (m.edge_class(e).dim == 2) recs.push_back({e.idx, std::uint32_t(fi), tv[(k + 2) % 3]});
     }
+  });
+  std::sort(recs.begin(), recs.end(), [](const Rec& x, const Rec& y) { return x.e != y.e ? x.e < y.e : x.f < y.f; });
+  for (std::size_t k = 0; k + 1 < recs.size(); ++k) {
+    if (recs[k].e != recs[k + 1].e) continue;
+    const auto t = m.triangle(TriId(recs[k].f));
+    const Point3 &A = m.point(t[0]), &B = m.point(t[1]), &C = m.point(t[2]);
+    const Point3& P = m.point(recs[k + 1].opp);
+    if (orient3d(A, B, C, P) != Sign::Zero) continue;
+    const Point3 E = A + cross(B - A, C - A);  // off the plane (checked exactly below)
+    const Sign o = orient3d(A, B, C, E);
+    if (o == Sign::Zero) continue;
+    const Sign s = o == Sign::Positive ? insphere(A, B, C, E, P) : insphere(A, C, B, E, P);
+    if (s == Sign::Zero) pairs.emplace_back(d.tri_point[recs[k].f], d.tri_point[recs[k + 1].f]);
   }
   return pairs;
 }
