@@ -71,7 +71,7 @@ ClassifiedTetMesh kuhn_primal(int n, double h = 1.0) {
           tets.push_back(t);
         }
   ClassifiedTetMesh m = TetMeshBuilder::build_topology("<kuhn>", pts, tets, std::vector<std::int32_t>(tets.size(), 1));
-  auto& tc = TetMeshBuilder::triangle_class(m);
+  auto& tc = TetMeshBuilder::triangle_face(m);
   for (std::size_t f = 0; f < m.num_triangles(); ++f) {
     std::set<std::pair<int, int>> common = box_constraints(idx[m.triangle(TriId(f))[0].idx], n);
     for (int v = 1; v < 3; ++v) {
@@ -80,7 +80,7 @@ ClassifiedTetMesh kuhn_primal(int n, double h = 1.0) {
       std::set_intersection(common.begin(), common.end(), cv.begin(), cv.end(), std::inserter(out, out.begin()));
       common = out;
     }
-    tc[f] = common.size() == 1 ? ModelRef{2, face_tag(*common.begin())} : ModelRef{3, 1};
+    tc[f] = common.size() == 1 ? face_tag(*common.begin()) : TetMeshBuilder::kNoFace;
   }
   auto& ec = TetMeshBuilder::edge_class(m);
   for (std::size_t e = 0; e < m.num_edges(); ++e) {

@@ -347,15 +347,15 @@ ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params, Cl
     comp_of[r] = std::int32_t(root_comp[root]);
   }
   std::vector<std::int32_t> face_tag = assign_tags(comp_given, max_face_tag);
-  auto& tri_class = TetMeshBuilder::triangle_class(m);
-  for (std::size_t r = 0; r < nmf; ++r) tri_class[mf[r]] = ModelRef{2, face_tag[comp_of[r]]};
+  auto& tri_face = TetMeshBuilder::triangle_face(m);
+  for (std::size_t r = 0; r < nmf; ++r) tri_face[mf[r]] = face_tag[comp_of[r]];
 
   // ---- model edges
   std::vector<char> is_me(nc, 0);
   // Distinct model-face tags around a candidate edge, computed on demand.
   auto edge_faces = [&](std::size_t ci) {
     std::vector<std::int32_t> tags;
-    for (std::uint32_t k = cand[ci].t0; k < cand[ci].t1; ++k) tags.push_back(tri_class[mf[et[k].r]].tag);
+    for (std::uint32_t k = cand[ci].t0; k < cand[ci].t1; ++k) tags.push_back(tri_face[mf[et[k].r]]);
     std::sort(tags.begin(), tags.end());
     tags.erase(std::unique(tags.begin(), tags.end()), tags.end());
     return tags;
@@ -400,7 +400,7 @@ ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params, Cl
   std::vector<std::int32_t> v_face(nv, kNoTag);
   std::vector<char> v_multi_face(nv, 0);
   for (std::size_t r = 0; r < nmf; ++r) {
-    const std::int32_t t = tri_class[mf[r]].tag;
+    const std::int32_t t = tri_face[mf[r]];
     for (VertexId v : m.triangle(TriId(mf[r]))) {
       if (v_face[v.idx] == kNoTag) v_face[v.idx] = t;
       else if (v_face[v.idx] != t) v_multi_face[v.idx] = 1;
@@ -448,7 +448,7 @@ ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params, Cl
     if (is_me[ci])
       edge_class[cand[ci].e] = ModelRef{1, edge_tag[ecomp[ci]]};
     else if (cand[ci].t1 > cand[ci].t0)
-      edge_class[cand[ci].e] = ModelRef{2, tri_class[mf[et[cand[ci].t0].r]].tag};
+      edge_class[cand[ci].e] = ModelRef{2, tri_face[mf[et[cand[ci].t0].r]]};
   }
   std::vector<std::int32_t> vgiven;
   std::vector<std::uint32_t> mv_list;
@@ -475,10 +475,10 @@ ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params, Cl
     r.tag = tag;
   }
   for (std::size_t r = 0; r < nmf; ++r) {
-    auto& e = faces[tri_class[mf[r]].tag];
+    auto& e = faces[tri_face[mf[r]]];
     if (e.regions.empty()) {
       e.dim = 2;
-      e.tag = tri_class[mf[r]].tag;
+      e.tag = tri_face[mf[r]];
       e.regions.push_back(key[r].r0);
       if (key[r].r1 != kNoTag) e.regions.push_back(key[r].r1);
       e.bounds = e.regions;

@@ -324,7 +324,7 @@ ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector
   }
   m.vertex_class_.assign(nv, ModelRef{});
   m.edge_class_.assign(m.edge_code_.size(), ModelRef{});
-  m.tri_class_.assign(m.tri_code_.size(), ModelRef{});
+  m.tri_face_.assign(m.tri_code_.size(), ClassifiedTetMesh::kNoFace);
   return m;
 }
 

@@ -8,6 +8,7 @@
 //  - local edge k of a tet joins kTetEdge[k][0] and kTetEdge[k][1].
 #pragma once
 #include <array>
+#include <climits>
 #include <bit>
 #include <cstdint>
 #include <span>
@@ -200,8 +201,12 @@ class ClassifiedTetMesh {
   // --- classification
   ModelRef vertex_class(VertexId v) const { return vertex_class_[v.idx]; }
   ModelRef edge_class(EdgeId e) const { return edge_class_[e.idx]; }
-  ModelRef triangle_class(TriId f) const { return tri_class_[f.idx]; }
-  bool on_model_face(TriId f) const { return tri_class_[f.idx].dim == 2; }
+  // A triangle is on a model face (dim 2) or on none (unclassified).
+  ModelRef triangle_class(TriId f) const {
+    const std::int32_t tag = tri_face_[f.idx];
+    return tag == kNoFace ? ModelRef{} : ModelRef{2, tag};
+  }
+  bool on_model_face(TriId f) const { return tri_face_[f.idx] != kNoFace; }
   const ModelTopology& model() const { return model_; }
 
   // Volume of tet t (double; for statistics only).
@@ -225,7 +230,11 @@ class ClassifiedTetMesh {
   std::vector<std::uint32_t> edge_code_;
   std::vector<std::uint32_t> vstar_off_;
   std::vector<TetId> vstar_;
-  std::vector<ModelRef> vertex_class_, edge_class_, tri_class_;
+  std::vector<ModelRef> vertex_class_, edge_class_;
+  // Per triangle: the tag of its model face, or kNoFace (4 bytes, not a
+  // ModelRef's 8: triangles are only ever on a model face or on none).
+  static constexpr std::int32_t kNoFace = INT32_MIN;
+  std::vector<std::int32_t> tri_face_;
   ModelTopology model_;
 };
 
@@ -243,7 +252,9 @@ class TetMeshBuilder {
                                           std::vector<std::uint32_t> input_tet = {});
   static std::vector<ModelRef>& vertex_class(ClassifiedTetMesh& m) { return m.vertex_class_; }
   static std::vector<ModelRef>& edge_class(ClassifiedTetMesh& m) { return m.edge_class_; }
-  static std::vector<ModelRef>& triangle_class(ClassifiedTetMesh& m) { return m.tri_class_; }
+  // Model-face tag per triangle, ClassifiedTetMesh::kNoFace where none.
+  static std::vector<std::int32_t>& triangle_face(ClassifiedTetMesh& m) { return m.tri_face_; }
+  static constexpr std::int32_t kNoFace = ClassifiedTetMesh::kNoFace;
   static ModelTopology& model(ClassifiedTetMesh& m) { return m.model_; }
 };
 
