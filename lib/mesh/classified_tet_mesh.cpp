@@ -253,18 +253,25 @@ ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector
   }
   m.tet_adj_.pop_back();
   // Triangles, numbered in the order (tet, local face) of their first tet: a
-  // face is new unless its neighbour comes earlier (also branch-free).
+  // face is new unless its neighbour comes earlier (branch-free). The face
+  // -> triangle map is not stored: one bit per local face marks the first
+  // ones, and a triangle id is the rank of its first face (tet_triangle()).
   m.tri_code_.resize(num_tris + 1);
-  m.tet_tri_.resize(4 * nt);
+  m.tri_first_bits_.assign((4 * nt + 63) / 64, 0);
+  m.tri_first_rank_.resize(m.tri_first_bits_.size());
   {
     std::uint32_t next = 0;
-    for (std::uint32_t c = 0; c < 4 * nt; ++c) {
-      const std::uint32_t across = m.tet_adj_[c];
-      const bool fresh = across == kNoNeighbour || across > c;
-      const std::uint32_t earlier = m.tet_tri_[fresh ? c : across].idx, keep = 0u - std::uint32_t(fresh);
-      m.tri_code_[next] = c;
-      m.tet_tri_[c] = TriId((next & keep) | (earlier & ~keep));
-      next += fresh;
+    for (std::size_t w = 0; w < m.tri_first_bits_.size(); ++w) {
+      m.tri_first_rank_[w] = next;
+      std::uint64_t bits = 0;
+      const std::uint32_t end = std::uint32_t(std::min<std::size_t>(4 * nt, 64 * (w + 1)));
+      for (std::uint32_t c = std::uint32_t(64 * w); c < end; ++c) {
+        const bool fresh = m.tet_adj_[c] > c;  // kNoNeighbour is above every code
+        m.tri_code_[next] = c;
+        next += fresh;
+        bits |= std::uint64_t(fresh) << (c & 63);
+      }
+      m.tri_first_bits_[w] = bits;
     }
   }
   m.tri_code_.pop_back();

@@ -7,6 +7,7 @@
 //  - local face i of a tet is the triangle opposite its local vertex i;
 //  - local edge k of a tet joins kTetEdge[k][0] and kTetEdge[k][1].
 #pragma once
+#include <algorithm>
 #include <array>
 #include <climits>
 #include <bit>
@@ -104,7 +105,13 @@ class ClassifiedTetMesh {
     const std::uint32_t c = tet_adj_[4 * t.idx + i];
     return c == kNoNeighbour ? -1 : int(c & 3u);
   }
-  TriId tet_triangle(TetId t, int i) const { return tet_tri_[4 * t.idx + i]; }
+  // The triangle on local face i: the rank of the face's first occurrence
+  // (its own code, or its neighbour's if that is smaller) among first ones.
+  TriId tet_triangle(TetId t, int i) const {
+    const std::uint32_t c = 4 * t.idx + std::uint32_t(i), first = std::min(c, tet_adj_[c]);
+    const std::uint64_t below = tri_first_bits_[first >> 6] & ((std::uint64_t(1) << (first & 63)) - 1);
+    return TriId(tri_first_rank_[first >> 6] + std::uint32_t(std::popcount(below)));
+  }
   EdgeId tet_edge(TetId t, int k) const { return tet_edge_[6 * t.idx + k]; }
   // The triangle's vertices, oriented so its right-hand normal points out of
   // triangle_tet(f, 0).
@@ -221,7 +228,10 @@ class ClassifiedTetMesh {
   std::vector<std::uint32_t> input_vertex_, input_tet_;
   static constexpr std::uint32_t kNoNeighbour = 0xffffffffu;
   std::vector<std::uint32_t> tet_adj_;  // 4 per tet: 4 * neighbour + its local face, or kNoNeighbour
-  std::vector<TriId> tet_tri_;   // 4 per tet
+  // Local faces that are a triangle's first (4 t + i order): one bit each,
+  // and the number of first faces before each 64-bit word.
+  std::vector<std::uint64_t> tri_first_bits_;
+  std::vector<std::uint32_t> tri_first_rank_;
   std::vector<EdgeId> tet_edge_; // 6 per tet
   // Triangles and edges are stored as one local entity of one of their tets:
   // 4 * tet + local face (the triangle's first tet, which it points out of)
