@@ -9,6 +9,7 @@
 #include "classify/classify.h"
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -19,6 +20,7 @@
 
 #include "classify/spatial_order.h"
 #include "classify/union_find.h"
+#include "core/radix_sort.h"
 #include "core/error.h"
 #include "predicates/predicates.h"
 
@@ -287,7 +289,8 @@ ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params, Cl
   et.reserve(3 * nmf);
   for (std::size_t r = 0; r < nmf; ++r)
     for (EdgeId e : triangle_edges(m, TriId(mf[r]))) et.push_back({e.idx, std::uint32_t(r)});
-  std::sort(et.begin(), et.end(), [](EdgeTri x, EdgeTri y) { return x.e != y.e ? x.e < y.e : x.r < y.r; });
+  // Stable by edge: records were made in rank order, so ranks stay increasing.
+  radix_sort_by_key(et, [](const EdgeTri& x) { return x.e; }, std::bit_width(ne));
   std::vector<std::pair<std::uint32_t, std::int32_t>> given_edges;  // (edge, tag), the last given wins
   std::int32_t max_edge_tag = 0;
   for (std::size_t i = 0; i < soup.edges.size(); ++i) {

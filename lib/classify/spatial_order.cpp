@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <numeric>
-#include <utility>
+
+#include "core/radix_sort.h"
 
 namespace polydual {
 
@@ -32,35 +33,18 @@ std::vector<std::uint32_t> morton_order(const std::vector<Point3>& points) {
   static constexpr double kCells = double((1u << 21) - 1);
   auto scale = [&](double l, double h) { return h > l ? kCells / (h - l) : 0.0; };
   const double sx = scale(lo.x, hi.x), sy = scale(lo.y, hi.y), sz = scale(lo.z, hi.z);
-  std::vector<std::uint64_t> keys(n);
+  struct Keyed { std::uint64_t key; std::uint32_t index; };
+  std::vector<Keyed> keys(n);
   for (std::size_t i = 0; i < n; ++i) {
     const Point3& p = points[i];
     auto q = [](double v, double l, double s) { return std::uint64_t(std::min(kCells, (v - l) * s)); };
-    keys[i] = spread3(q(p.x, lo.x, sx)) | spread3(q(p.y, lo.y, sy)) << 1 | spread3(q(p.z, lo.z, sz)) << 2;
+    keys[i] = {spread3(q(p.x, lo.x, sx)) | spread3(q(p.y, lo.y, sy)) << 1 | spread3(q(p.z, lo.z, sz)) << 2,
+               std::uint32_t(i)};
   }
-  // Stable LSD radix sort of (key, index) on the 63 key bits, 11 bits a pass:
-  // the order of std::sort on the pairs (equal keys keep index order), without
-  // a comparison sort's unpredictable branches.
-  constexpr int kBits = 11, kPasses = 6;
-  constexpr std::size_t kBuckets = std::size_t(1) << kBits;
-  std::vector<std::uint32_t> count(kPasses * kBuckets, 0);
-  for (std::uint64_t k : keys)
-    for (int r = 0; r < kPasses; ++r) ++count[r * kBuckets + ((k >> (kBits * r)) & (kBuckets - 1))];
-  std::vector<std::uint64_t> keys2(n);
-  std::vector<std::uint32_t> order2(n);
-  for (int r = 0; r < kPasses; ++r) {
-    std::uint32_t* c = count.data() + r * kBuckets;
-    if (*std::max_element(c, c + kBuckets) == n) continue;  // one digit for all: nothing moves
-    std::uint32_t sum = 0;
-    for (std::size_t b = 0; b < kBuckets; ++b) sum += std::exchange(c[b], sum);
-    for (std::size_t i = 0; i < n; ++i) {
-      const std::uint32_t pos = c[(keys[i] >> (kBits * r)) & (kBuckets - 1)]++;
-      keys2[pos] = keys[i];
-      order2[pos] = order[i];
-    }
-    keys.swap(keys2);
-    order.swap(order2);
-  }
+  // Stable radix sort on the 63 key bits: the order of std::sort on (key,
+  // index) pairs, without a comparison sort's unpredictable branches.
+  radix_sort_by_key(keys, [](const Keyed& k) { return k.key; }, 63);
+  for (std::size_t i = 0; i < n; ++i) order[i] = keys[i].index;
   return order;
 }
 

@@ -14,6 +14,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "core/bits.h"
+#include "core/radix_sort.h"
 #include "dual/central_points.h"
 #include "dual/cleanup.h"
 #include "dual/sides.h"
@@ -43,13 +45,13 @@ class SparsePoints {
     first_ = first;
     prefix_.resize(bits_.size());
     std::uint32_t sum = 0;
-    for (std::size_t b = 0; b < bits_.size(); ++b) { prefix_[b] = sum; sum += std::uint32_t(std::popcount(bits_[b])); }
+    for (std::size_t b = 0; b < bits_.size(); ++b) { prefix_[b] = sum; sum += std::uint32_t(popcount64(bits_[b])); }
   }
   bool has(std::size_t i) const { return (bits_[i >> 6] >> (i & 63)) & 1u; }
   // Rank of entity i among the set ones (i must be set).
   std::uint32_t rank(std::size_t i) const {
     const std::uint64_t below = bits_[i >> 6] & ((std::uint64_t(1) << (i & 63)) - 1);
-    return prefix_[i >> 6] + std::uint32_t(std::popcount(below));
+    return prefix_[i >> 6] + std::uint32_t(popcount64(below));
   }
   PointId operator[](std::size_t i) const { return has(i) ? PointId(first_ + rank(i)) : PointId::invalid(); }
   // Calls f(i, rank of i) for the set entities in increasing order (64 at a
@@ -350,7 +352,8 @@ std::vector<std::pair<PointId, PointId>> exact_coincidences(const ClassifiedTetM
       if (m.edge_class(e).dim == 2) recs.push_back({e.idx, std::uint32_t(fi), tv[(k + 2) % 3]});
     }
   });
-  std::sort(recs.begin(), recs.end(), [](const Rec& x, const Rec& y) { return x.e != y.e ? x.e < y.e : x.f < y.f; });
+  // Stable by edge: records were made in triangle order.
+  radix_sort_by_key(recs, [](const Rec& x) { return x.e; }, std::bit_width(m.num_edges()));
   for (std::size_t k = 0; k + 1 < recs.size(); ++k) {
     if (recs[k].e != recs[k + 1].e) continue;
     const auto t = m.triangle(TriId(recs[k].f));

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "core/bits.h"
 #include "core/classification.h"
 #include "core/handles.h"
 #include "core/vec3.h"
@@ -110,7 +111,7 @@ class ClassifiedTetMesh {
   TriId tet_triangle(TetId t, int i) const {
     const std::uint32_t c = 4 * t.idx + std::uint32_t(i), first = std::min(c, tet_adj_[c]);
     const std::uint64_t below = tri_first_bits_[first >> 6] & ((std::uint64_t(1) << (first & 63)) - 1);
-    return TriId(tri_first_rank_[first >> 6] + std::uint32_t(std::popcount(below)));
+    return TriId(tri_first_rank_[first >> 6] + std::uint32_t(popcount64(below)));
   }
   EdgeId tet_edge(TetId t, int k) const { return tet_edge_[6 * t.idx + k]; }
   // The triangle's vertices, oriented so its right-hand normal points out of
