@@ -134,19 +134,36 @@ void make_edge_faces(const ClassifiedTetMesh& m, const VertexSides& sides, const
   std::vector<TriId> tris;
   std::vector<std::size_t> cuts;
   std::vector<PointId> loop;
+  // Edges classified in a region have no model-face triangle around them
+  // (classify()), so their rings are closed and uncut: one face of the tet
+  // centres each. They come in long runs; their rings are walked
+  // kRingLanes at a time (ClassifiedTetMesh::closed_rings) and emitted in
+  // edge order.
+  constexpr std::size_t K = ClassifiedTetMesh::kRingLanes;
+  std::vector<TetId> rings[K];
+  EdgeId batch[K];
+  std::size_t nb = 0;
+  auto flush = [&] {
+    if (nb == 0) return;
+    m.closed_rings(batch, nb, rings);
+    for (std::size_t l = 0; l < nb; ++l) {
+      for (TetId t : rings[l]) pm.face_points.push_back(PointId(t.idx));
+      const auto [a, b] = m.edge(batch[l]);
+      const TetId t0 = m.edge_tet(batch[l]);
+      pm.close_face(sides.cell(t0, a), sides.cell(t0, b), FaceKind::Interior, 0);
+    }
+    nb = 0;
+  };
   for (std::size_t e = 0; e < m.num_edges(); ++e) {
     const EdgeId eid(e);
-    const VertexId a = m.edge(eid)[0], b = m.edge(eid)[1];
-    bool closed;
     if (m.edge_class(eid).dim == 3) {
-      // Classified in a region: no model-face triangle around it (classify()),
-      // so the ring is closed and uncut: one face of the tet centres.
-      m.for_each_closed_ring_tet(eid, [&](TetId t) { pm.face_points.push_back(PointId(t.idx)); });
-      const TetId t0 = m.edge_tet(eid);
-      pm.close_face(sides.cell(t0, a), sides.cell(t0, b),
-                    FaceKind::Interior, 0);
+      batch[nb++] = eid;
+      if (nb == K) flush();
       continue;
     }
+    flush();
+    const VertexId a = m.edge(eid)[0], b = m.edge(eid)[1];
+    bool closed;
     m.edge_ring(eid, ring, tris, closed);
     const std::size_t n = ring.size();
     cuts.clear();
@@ -182,6 +199,7 @@ void make_edge_faces(const ClassifiedTetMesh& m, const VertexSides& sides, const
         emit(cuts[j], j + 1 < cuts.size() ? cuts[j + 1] : cuts[0] + n, true);
     }
   }
+  flush();
 }
 
 // STEP 7: capping faces. Around each vertex v, walk the model-face triangles
@@ -304,7 +322,8 @@ std::vector<std::pair<PointId, PointId>> exact_coincidences(const ClassifiedTetM
   // vertex across it is the one opposite the shared face. Whether a face
   // needs the test is a coin toss, so the candidates of a block of tets are
   // gathered without branches first (written always, counted by the flag),
-  // then tested.
+  // then tested. The centre comparison rejects almost every candidate, so
+  // it comes before the (costlier) lookup of the triangle's model face.
   const std::size_t nt = m.num_tets();
   constexpr std::size_t kBlock = 4096;
   std::vector<std::uint32_t> cand(4 * kBlock);
@@ -318,8 +337,7 @@ std::vector<std::pair<PointId, PointId>> exact_coincidences(const ClassifiedTetM
         const std::uint32_t later = std::uint32_t(t1.valid()) & std::uint32_t(t1.idx > t), keep = 0u - later;
         const std::uint32_t t1_or_t = (t1.idx & keep) | (std::uint32_t(t) & ~keep);
         cand[n] = std::uint32_t(4 * t + std::size_t(i));
-        n += wc0 & later & std::uint32_t(d.tet_well_centred[t1_or_t] != 0) &
-             std::uint32_t(!m.on_model_face(m.tet_triangle(TetId(t), i)));
+        n += wc0 & later & std::uint32_t(d.tet_well_centred[t1_or_t] != 0);
       }
     }
     for (std::size_t k = 0; k < n; ++k) {
@@ -332,6 +350,7 @@ std::vector<std::pair<PointId, PointId>> exact_coincidences(const ClassifiedTetM
       const Point3 &c0 = pm.points[t0.idx], &c1 = pm.points[t1.idx];
       const double tol = 1.001 * (d.tet_centre_error[t0.idx] + d.tet_centre_error[t1.idx]);
       if (std::fabs(c0.x - c1.x) > tol || std::fabs(c0.y - c1.y) > tol || std::fabs(c0.z - c1.z) > tol) continue;
+      if (m.on_model_face(m.tet_triangle(t0, i))) continue;
       const auto& a = m.tet(t0);
       const VertexId far = m.tet(t1)[m.tet_neighbor_face(t0, i)];
       if (insphere(m.point(a[0]), m.point(a[1]), m.point(a[2]), m.point(a[3]), m.point(far)) == Sign::Zero)
