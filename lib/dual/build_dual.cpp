@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <bit>
 #include <chrono>
+#include <limits>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -74,7 +75,7 @@ struct DualPoints {
   SparsePoints edge_point;          // model-edge edges
   std::vector<PointId> vert_point;  // per vertex (model vertices only)
   std::vector<char> tet_well_centred;
-  std::vector<double> tet_centre_error;  // CentralPoint::error of well-centred tets
+  std::vector<double> tet_centre_error;  // CentralPoint::error if well-centred, else -inf
   std::vector<char> tri_well_centred;  // by rank among the model-face triangles
 };
 
@@ -94,7 +95,7 @@ DualPoints make_points(const ClassifiedTetMesh& m, PolyMesh& pm, DualStats& st) 
       pm.points[t] = c.p;
       pm.point_class[t] = ModelRef{3, m.region(TetId(t))};
       d.tet_well_centred[t] = c.well_centred;
-      d.tet_centre_error[t] = c.error;
+      d.tet_centre_error[t] = c.well_centred ? c.error : -std::numeric_limits<double>::infinity();
     }
   });
   st.well_centred_tets = std::size_t(std::count(d.tet_well_centred.begin(), d.tet_well_centred.end(), 1));
@@ -134,34 +135,17 @@ void make_edge_faces(const ClassifiedTetMesh& m, const VertexSides& sides, const
   std::vector<TriId> tris;
   std::vector<std::size_t> cuts;
   std::vector<PointId> loop;
-  // Edges classified in a region have no model-face triangle around them
-  // (classify()), so their rings are closed and uncut: one face of the tet
-  // centres each. They come in long runs; their rings are walked
-  // kRingLanes at a time (ClassifiedTetMesh::closed_rings) and emitted in
-  // edge order.
-  constexpr std::size_t K = ClassifiedTetMesh::kRingLanes;
-  std::vector<TetId> rings[K];
-  EdgeId batch[K];
-  std::size_t nb = 0;
-  auto flush = [&] {
-    if (nb == 0) return;
-    m.closed_rings(batch, nb, rings);
-    for (std::size_t l = 0; l < nb; ++l) {
-      for (TetId t : rings[l]) pm.face_points.push_back(PointId(t.idx));
-      const auto [a, b] = m.edge(batch[l]);
-      const TetId t0 = m.edge_tet(batch[l]);
-      pm.close_face(sides.cell(t0, a), sides.cell(t0, b), FaceKind::Interior, 0);
-    }
-    nb = 0;
-  };
   for (std::size_t e = 0; e < m.num_edges(); ++e) {
     const EdgeId eid(e);
     if (m.edge_class(eid).dim == 3) {
-      batch[nb++] = eid;
-      if (nb == K) flush();
+      // Classified in a region: no model-face triangle around it (classify()),
+      // so the ring is closed and uncut: one face of the tet centres.
+      const auto [a, b] = m.edge(eid);
+      m.for_each_closed_ring_tet(eid, [&](TetId t) { pm.face_points.push_back(PointId(t.idx)); });
+      const TetId t0 = m.edge_tet(eid);
+      pm.close_face(sides.cell(t0, a), sides.cell(t0, b), FaceKind::Interior, 0);
       continue;
     }
-    flush();
     const VertexId a = m.edge(eid)[0], b = m.edge(eid)[1];
     bool closed;
     m.edge_ring(eid, ring, tris, closed);
@@ -199,7 +183,6 @@ void make_edge_faces(const ClassifiedTetMesh& m, const VertexSides& sides, const
         emit(cuts[j], j + 1 < cuts.size() ? cuts[j + 1] : cuts[0] + n, true);
     }
   }
-  flush();
 }
 
 // STEP 7: capping faces. Around each vertex v, walk the model-face triangles
@@ -315,41 +298,52 @@ void make_caps(const ClassifiedTetMesh& m, const VertexSides& sides, const DualP
 // of one region that are cospherical (EXACT insphere == 0), not across a model
 // face; and adjacent well-centred model-face triangles of one model face that
 // are cocircular (EXACT: coplanar and cospherical with an off-plane point).
-std::vector<std::pair<PointId, PointId>> exact_coincidences(const ClassifiedTetMesh& m, const DualPoints& d,
-                                                             const PolyMesh& pm) {
-  std::vector<std::pair<PointId, PointId>> pairs;
+// Also the candidates for the short-edge collapse among the dual edges that
+// join two tet centres: such an edge crosses an interior triangle not on a
+// model face (consecutive tets of a fan share one), so these are found here,
+// once per triangle, not once per face loop the edge is in (three).
+struct PointPairs {
+  std::vector<std::pair<PointId, PointId>> exact, short_;
+};
+
+PointPairs point_pairs(const ClassifiedTetMesh& m, const DualPoints& d, const PolyMesh& pm, double collapse_length) {
+  PointPairs out;
+  auto& pairs = out.exact;
+  const double lim2 = collapse_length * collapse_length;
   // Each interior triangle once, from its smaller tet t0; the neighbour's
   // vertex across it is the one opposite the shared face. Whether a face
-  // needs the test is a coin toss, so the candidates of a block of tets are
-  // gathered without branches first (written always, counted by the flag),
-  // then tested. The centre comparison rejects almost every candidate, so
-  // it comes before the (costlier) lookup of the triangle's model face.
+  // is seen from its smaller tet is a coin toss, so the faces of a block of
+  // tets are gathered without branches first (written always, counted by the
+  // flag), then tested. The tests reject almost every face before the
+  // (costlier) lookup of the triangle's model face.
   const std::size_t nt = m.num_tets();
   constexpr std::size_t kBlock = 4096;
   std::vector<std::uint32_t> cand(4 * kBlock);
   for (std::size_t begin = 0; begin < nt; begin += kBlock) {
     const std::size_t end = std::min(nt, begin + kBlock);
     std::size_t n = 0;
-    for (std::size_t t = begin; t < end; ++t) {
-      const std::uint32_t wc0 = std::uint32_t(d.tet_well_centred[t] != 0);
+    for (std::size_t t = begin; t < end; ++t)
       for (int i = 0; i < 4; ++i) {
         const TetId t1 = m.tet_neighbor(TetId(t), i);
-        const std::uint32_t later = std::uint32_t(t1.valid()) & std::uint32_t(t1.idx > t), keep = 0u - later;
-        const std::uint32_t t1_or_t = (t1.idx & keep) | (std::uint32_t(t) & ~keep);
         cand[n] = std::uint32_t(4 * t + std::size_t(i));
-        n += wc0 & later & std::uint32_t(d.tet_well_centred[t1_or_t] != 0);
+        n += std::uint32_t(t1.valid()) & std::uint32_t(t1.idx > t);
       }
-    }
     for (std::size_t k = 0; k < n; ++k) {
       const TetId t0(cand[k] >> 2);
       const int i = int(cand[k] & 3);
       const TetId t1 = m.tet_neighbor(t0, i);
+      const Point3 &c0 = pm.points[t0.idx], &c1 = pm.points[t1.idx];
+      const Vec3 dc = c1 - c0;
+      // Inexact: a length threshold is a tolerance, not a sign.
+      if (dot(dc, dc) < lim2) [[unlikely]] {
+        if (!m.on_model_face(m.tet_triangle(t0, i))) out.short_.emplace_back(PointId(t0.idx), PointId(t1.idx));
+      }
       // Cospherical (sharing a face) iff the exact circumcentres coincide. If
       // the rounded centres differ by more than their error bounds (L9c), they
-      // do not: no insphere test needed. Otherwise the exact test decides.
-      const Point3 &c0 = pm.points[t0.idx], &c1 = pm.points[t1.idx];
+      // do not: no insphere test needed. Otherwise the exact test decides. A
+      // clamped centre's bound is -inf: no tolerance admits it.
       const double tol = 1.001 * (d.tet_centre_error[t0.idx] + d.tet_centre_error[t1.idx]);
-      if (std::fabs(c0.x - c1.x) > tol || std::fabs(c0.y - c1.y) > tol || std::fabs(c0.z - c1.z) > tol) continue;
+      if (std::fabs(dc.x) > tol || std::fabs(dc.y) > tol || std::fabs(dc.z) > tol) continue;
       if (m.on_model_face(m.tet_triangle(t0, i))) continue;
       const auto& a = m.tet(t0);
       const VertexId far = m.tet(t1)[m.tet_neighbor_face(t0, i)];
@@ -385,7 +379,7 @@ std::vector<std::pair<PointId, PointId>> exact_coincidences(const ClassifiedTetM
     const Sign s = o == Sign::Positive ? insphere(A, B, C, E, P) : insphere(A, C, B, E, P);
     if (s == Sign::Zero) pairs.emplace_back(d.tri_point[recs[k].f], d.tri_point[recs[k + 1].f]);
   }
-  return pairs;
+  return out;
 }
 
 double mean_edge_length(const ClassifiedTetMesh& m) {
@@ -467,11 +461,11 @@ PolyMesh build_dual(const ClassifiedTetMesh& m, const DualParams& params, DualSt
   // STEP 9, first half: the exact coincidences need only the points, so find
   // them now and free the well-centred flags before the faces fill memory.
   t0 = Clock::now();
-  std::vector<std::pair<PointId, PointId>> pairs;
+  PointPairs pairs;
   double collapse = 0;
   if (params.cleanup) {
-    pairs = exact_coincidences(m, d, pm);
     collapse = params.collapse_tolerance * mean_edge_length(m);
+    pairs = point_pairs(m, d, pm, collapse);
   }
   d.tet_well_centred = std::vector<char>();
   d.tet_centre_error = std::vector<double>();
@@ -497,7 +491,7 @@ PolyMesh build_dual(const ClassifiedTetMesh& m, const DualParams& params, DualSt
   // before the cleanup, which runs at the memory peak.
   sides = VertexSides{};
   d = DualPoints{};
-  CleanupResult cr = cleanup_dual(pm, pairs, collapse);
+  CleanupResult cr = cleanup_dual(pm, pairs.exact, pairs.short_, collapse, std::uint32_t(m.num_tets()));
   st.merged_points = cr.merged_points;
   st.collapsed_points = cr.collapsed_points;
   st.dropped_faces = cr.dropped_faces;

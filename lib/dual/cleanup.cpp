@@ -82,7 +82,8 @@ std::size_t rewrite_touched_faces(PolyMesh& pm, const std::vector<std::uint32_t>
 // Works in place (no second PolyMesh: the cleanup runs at the memory peak of
 // the dual construction).
 CleanupResult cleanup_dual(PolyMesh& pm, const std::vector<std::pair<PointId, PointId>>& exact_pairs,
-                           double collapse_length) {
+                           const std::vector<std::pair<PointId, PointId>>& short_pairs, double collapse_length,
+                           std::uint32_t scan_from) {
   CleanupResult res;
   const std::size_t np = pm.num_points(), nf = pm.num_faces();
   UnionFind uf(np);
@@ -91,9 +92,10 @@ CleanupResult cleanup_dual(PolyMesh& pm, const std::vector<std::pair<PointId, Po
     if (pm.point_class[p.idx] != pm.point_class[q.idx]) continue;
     if (uf.find(p.idx) != uf.find(q.idx)) { uf.unite(p.idx, q.idx); ++res.merged_points; }
   }
-  // Short edges, measured between the (merged) representatives, face by face
-  // and edge by edge (p_k, p_k+1 mod n); each point's representative is found
-  // once and carried to the next edge. Inexact: a length threshold is a
+  // Short edges, measured between the (merged) representatives: first the
+  // listed pairs, then face by face and edge by edge (p_k, p_k+1 mod n) the
+  // edges with an end at or above scan_from; each point's representative is
+  // found once and carried to the next edge. Inexact: a length threshold is a
   // tolerance, not a sign.
   if (collapse_length > 0) {
     const double lim2 = collapse_length * collapse_length;
@@ -108,12 +110,20 @@ CleanupResult cleanup_dual(PolyMesh& pm, const std::vector<std::pair<PointId, Po
       }
       return rq;
     };
+    for (auto [p, q] : short_pairs) check(uf.find(p.idx), uf.find(q.idx));
     const PointId* fp = pm.face_points.data();
     for (std::size_t f = 0; f < nf; ++f) {
       const std::size_t b = pm.face_offsets[f], e = pm.face_offsets[f + 1];
-      std::uint32_t rp = uf.find(fp[b].idx);
-      for (std::size_t i = b + 1; i < e; ++i) rp = check(rp, uf.find(fp[i].idx));
-      check(rp, uf.find(fp[b].idx));  // the closing edge
+      std::uint32_t top = 0;  // the largest id in the loop (no branch per point)
+      for (std::size_t i = b; i < e; ++i) top = std::max(top, fp[i].idx);
+      if (top < scan_from) continue;
+      std::uint32_t p = fp[b].idx, rp = uf.find(p);
+      for (std::size_t i = b + 1; i <= e; ++i) {
+        const std::uint32_t q = fp[i < e ? i : b].idx;  // i == e: the closing edge
+        const std::uint32_t rq = uf.find(q);
+        rp = std::max(p, q) >= scan_from ? check(rp, rq) : rq;
+        p = q;
+      }
     }
   }
   // Rewrite the loops through the representatives. Only some faces change:

@@ -163,45 +163,19 @@ class ClassifiedTetMesh {
   // tris[k] precedes tets[k] and tris[k+1] follows it in the right-handed order;
   // for a closed ring tris.front() == tris.back().
   void edge_ring(EdgeId e, std::vector<TetId>& tets, std::vector<TriId>& tris, bool& closed) const;
-  // The rings of up to kRingLanes edges whose rings are closed (an edge
-  // classified in a region is), each in edge_ring's order: ring k goes to
-  // rings[k] (cleared first). A ring walk is a chain of dependent loads (tet,
-  // local indices, neighbour, next tet); walking several rings in lockstep
-  // lets their loads overlap, and the lanes step without branches (a lane
-  // that has come round keeps its tet and stops counting), so the only
-  // unpredictable branch is the end of the longest ring.
-  static constexpr std::size_t kRingLanes = 4;
-  void closed_rings(const EdgeId* edges, std::size_t n, std::vector<TetId>* rings) const {
-    VertexId a[kRingLanes], b[kRingLanes];
-    TetId start[kRingLanes], t[kRingLanes];
-    std::uint32_t live[kRingLanes], len[kRingLanes];
-    for (std::size_t l = 0; l < kRingLanes; ++l) {
-      const std::size_t k = l < n ? l : 0;  // idle lanes repeat lane 0, uncounted
-      const auto ab = edge(edges[k]);
-      a[l] = ab[0];
-      b[l] = ab[1];
-      start[l] = t[l] = edge_tet(edges[k]);
-      live[l] = l < n;
-      len[l] = 0;
-      rings[l].resize(std::max<std::size_t>(rings[l].capacity(), 16));
-    }
-    for (;;) {
-      std::uint32_t any = 0;
-      for (std::size_t l = 0; l < kRingLanes; ++l) {
-        if (len[l] + 1 >= rings[l].size()) [[unlikely]] rings[l].resize(2 * rings[l].size());
-        rings[l][len[l]] = t[l];
-        len[l] += live[l];
-        const std::uint32_t code = tet_adj_[4 * t[l].idx + detail::kRing.c[local_index(t[l], a[l])][local_index(t[l], b[l])]];
-        // kNoNeighbour: open after all (the caller broke the contract): stop.
-        const std::uint32_t go = live[l] & std::uint32_t(code != kNoNeighbour) & std::uint32_t((code >> 2) != start[l].idx);
-        const std::uint32_t mask = 0u - go;
-        t[l] = TetId(((code >> 2) & mask) | (t[l].idx & ~mask));
-        live[l] = go;
-        any |= go;
-      }
-      if (!any) break;
-    }
-    for (std::size_t l = 0; l < n; ++l) rings[l].resize(len[l]);
+  // Calls f(t) for each tet around an edge whose ring is closed (an edge
+  // classified in a region is), in edge_ring's order, without building the ring.
+  template <class F>
+  void for_each_closed_ring_tet(EdgeId e, F&& f) const {
+    const auto [a, b] = edge(e);
+    const TetId start = edge_tet(e);
+    TetId t = start;
+    do {
+      f(t);
+      const std::uint32_t code = tet_adj_[4 * t.idx + detail::kRing.c[local_index(t, a)][local_index(t, b)]];
+      if (code == kNoNeighbour) return;  // open after all: the caller broke the contract
+      t = TetId(code >> 2);
+    } while (t != start);
   }
   // The edge joining two distinct vertices a, b of triangle f (a precondition).
   EdgeId triangle_edge(TriId f, VertexId a, VertexId b) const {
