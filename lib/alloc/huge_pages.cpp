@@ -31,7 +31,12 @@ struct MallocTuning {
   MallocTuning() {
     mallopt(M_MMAP_THRESHOLD, 1 << 30);
     mallopt(M_TRIM_THRESHOLD, 1 << 30);
-    mallopt(M_TOP_PAD, 16 << 20);
+    // The heap grows in steps of at least 64 MiB. malloc writes the new top
+    // chunk's header into each extension before allocate() can advise it, so
+    // the 2 MiB around that header gets 4 KiB pages: fewer, larger steps
+    // leave fewer such spots (measured at 1M tets: 11k -> 5k page faults per
+    // conversion). Untouched pad costs address space, not memory.
+    mallopt(M_TOP_PAD, 64 << 20);
   }
 } const malloc_tuning;
 
