@@ -160,6 +160,48 @@ TEST(Dual, KuhnLatticeGivesCubes) {
   EXPECT_GT(st.merged_points, 0u);
 }
 
+// A Kuhn lattice whose interior vertices move by ~1e-7 of the spacing: the six
+// tets of a cube are then no longer cospherical (no exact merge), but their
+// centres lie within 1e-6 of each other. The short-edge collapse (default
+// tolerance 1e-3 x mean edge) joins them, and every cell is a cube or box
+// again; without it the cells keep their tiny edges.
+TEST(Dual, ShortEdgeCollapseRestoresPerturbedLattice) {
+  TetSoup s = kuhn_lattice(4, 4, 4);
+  std::uint64_t state = 12345;
+  auto jitter = [&] {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return (double(state >> 11) * 0x1p-53 - 0.5) * 2e-7;
+  };
+  for (Point3& p : s.points)
+    if (p.x > 0 && p.x < 4 && p.y > 0 && p.y < 4 && p.z > 0 && p.z < 4) p += Vec3{jitter(), jitter(), jitter()};
+  ClassifiedTetMesh m = classify(s);
+  auto count_boxes = [](const PolyMesh& pm) {
+    std::size_t boxes = 0;
+    for (std::size_t c = 0; c < pm.num_cells(); ++c) {
+      auto faces = pm.cell(CellId(c));
+      bool quads = std::all_of(faces.begin(), faces.end(), [&](HalfFace h) { return pm.face(h.face()).size() == 4; });
+      boxes += pm.cell_points(CellId(c)).size() == 8 && faces.size() == 6 && quads;
+    }
+    return boxes;
+  };
+  DualParams off;
+  off.collapse_tolerance = 0;
+  DualStats st_off, st_on;
+  PolyMesh raw = build_dual(m, off, &st_off);
+  PolyMesh pm = build_dual(m, {}, &st_on);
+  EXPECT_EQ(st_off.collapsed_points, 0u);
+  EXPECT_GT(st_on.collapsed_points, 0u);
+  EXPECT_LT(pm.num_points(), raw.num_points());
+  // The interior cells (3^3 = 27 interior lattice vertices) are cubes only
+  // after the collapse.
+  EXPECT_LT(count_boxes(raw), 125u - 27u + 1u);
+  EXPECT_EQ(count_boxes(pm), 125u);
+  ValidationReport r = validate(pm, &m);
+  EXPECT_EQ(r.face_errors, 0u);
+  EXPECT_EQ(r.closed_cells, r.cells);
+  check_invariants(s, true, "perturbed kuhn lattice");
+}
+
 TEST(Dual, KuhnLatticeTwoMaterials) {
   check_invariants(kuhn_lattice(4, 3, 3, 1, 1, 1, 2), true, "kuhn 2 materials");
 }
