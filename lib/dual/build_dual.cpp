@@ -129,8 +129,10 @@ DualPoints make_points(const ClassifiedTetMesh& m, PolyMesh& pm, DualStats& st) 
 }
 
 // STEP 5-6: faces of primal edges, one per fan.
+// The faces with a model point (triangle centre, midpoint) are listed in
+// model_faces: the cleanup walks only their loops for short edges.
 void make_edge_faces(const ClassifiedTetMesh& m, const VertexSides& sides, const DualPoints& d,
-                     PolyMesh& pm) {
+                     PolyMesh& pm, std::vector<std::uint32_t>& model_faces) {
   std::vector<TetId> ring;
   std::vector<TriId> tris;
   std::vector<std::size_t> cuts;
@@ -171,6 +173,7 @@ void make_edge_faces(const ClassifiedTetMesh& m, const VertexSides& sides, const
         if (d.edge_point[e].valid()) loop.push_back(d.edge_point[e]);
       }
       const TetId t0 = ring[s % n];
+      if (bounded) model_faces.push_back(std::uint32_t(pm.num_faces()));
       pm.add_face(loop, sides.cell(t0, a), sides.cell(t0, b),
                   FaceKind::Interior, 0);
     };
@@ -476,8 +479,11 @@ PolyMesh build_dual(const ClassifiedTetMesh& m, const DualParams& params, DualSt
   VertexSides sides = compute_sides(m);
   st.seconds_sides = since(t0);
   t0 = Clock::now();
-  make_edge_faces(m, sides, d, pm);
-  make_caps(m, sides, d, pm, st);
+  std::vector<std::uint32_t> model_faces;
+  make_edge_faces(m, sides, d, pm, model_faces);
+  const std::size_t first_cap = pm.num_faces();
+  make_caps(m, sides, d, pm, st);  // every cap has model points
+  for (std::size_t f = first_cap; f < pm.num_faces(); ++f) model_faces.push_back(std::uint32_t(f));
   st.seconds_faces = since(t0);
 
   t0 = Clock::now();
@@ -491,7 +497,7 @@ PolyMesh build_dual(const ClassifiedTetMesh& m, const DualParams& params, DualSt
   // before the cleanup, which runs at the memory peak.
   sides = VertexSides{};
   d = DualPoints{};
-  CleanupResult cr = cleanup_dual(pm, pairs.exact, pairs.short_, collapse, std::uint32_t(m.num_tets()));
+  CleanupResult cr = cleanup_dual(pm, pairs.exact, pairs.short_, collapse, model_faces);
   st.merged_points = cr.merged_points;
   st.collapsed_points = cr.collapsed_points;
   st.dropped_faces = cr.dropped_faces;

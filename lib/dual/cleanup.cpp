@@ -83,7 +83,7 @@ std::size_t rewrite_touched_faces(PolyMesh& pm, const std::vector<std::uint32_t>
 // the dual construction).
 CleanupResult cleanup_dual(PolyMesh& pm, const std::vector<std::pair<PointId, PointId>>& exact_pairs,
                            const std::vector<std::pair<PointId, PointId>>& short_pairs, double collapse_length,
-                           std::uint32_t scan_from) {
+                           const std::vector<std::uint32_t>& scan_faces) {
   CleanupResult res;
   const std::size_t np = pm.num_points(), nf = pm.num_faces();
   UnionFind uf(np);
@@ -93,10 +93,9 @@ CleanupResult cleanup_dual(PolyMesh& pm, const std::vector<std::pair<PointId, Po
     if (uf.find(p.idx) != uf.find(q.idx)) { uf.unite(p.idx, q.idx); ++res.merged_points; }
   }
   // Short edges, measured between the (merged) representatives: first the
-  // listed pairs, then face by face and edge by edge (p_k, p_k+1 mod n) the
-  // edges with an end at or above scan_from; each point's representative is
-  // found once and carried to the next edge. Inexact: a length threshold is a
-  // tolerance, not a sign.
+  // listed pairs, then in the loops of scan_faces edge by edge (p_k, p_k+1
+  // mod n); each point's representative is found once and carried to the
+  // next edge. Inexact: a length threshold is a tolerance, not a sign.
   if (collapse_length > 0) {
     const double lim2 = collapse_length * collapse_length;
     // The length test comes first: it is almost always false, and the
@@ -112,18 +111,11 @@ CleanupResult cleanup_dual(PolyMesh& pm, const std::vector<std::pair<PointId, Po
     };
     for (auto [p, q] : short_pairs) check(uf.find(p.idx), uf.find(q.idx));
     const PointId* fp = pm.face_points.data();
-    for (std::size_t f = 0; f < nf; ++f) {
+    for (std::uint32_t f : scan_faces) {
       const std::size_t b = pm.face_offsets[f], e = pm.face_offsets[f + 1];
-      std::uint32_t top = 0;  // the largest id in the loop (no branch per point)
-      for (std::size_t i = b; i < e; ++i) top = std::max(top, fp[i].idx);
-      if (top < scan_from) continue;
-      std::uint32_t p = fp[b].idx, rp = uf.find(p);
-      for (std::size_t i = b + 1; i <= e; ++i) {
-        const std::uint32_t q = fp[i < e ? i : b].idx;  // i == e: the closing edge
-        const std::uint32_t rq = uf.find(q);
-        rp = std::max(p, q) >= scan_from ? check(rp, rq) : rq;
-        p = q;
-      }
+      std::uint32_t rp = uf.find(fp[b].idx);
+      for (std::size_t i = b + 1; i < e; ++i) rp = check(rp, uf.find(fp[i].idx));
+      check(rp, uf.find(fp[b].idx));  // the closing edge
     }
   }
   // Rewrite the loops through the representatives. Only some faces change:
@@ -165,19 +157,21 @@ CleanupResult cleanup_dual(PolyMesh& pm, const std::vector<std::pair<PointId, Po
   std::size_t first_unused = 0;
   while (first_unused < np && used[first_unused]) ++first_unused;
   if (first_unused == np) return res;
-  std::vector<PointId> new_id(np - first_unused, PointId::invalid());
+  // The new id of every point (the identity below first_unused): the loops
+  // are then remapped by one lookup per entry, with no branch on the id.
+  std::vector<std::uint32_t> new_id(np);
+  for (std::size_t p = 0; p < first_unused; ++p) new_id[p] = std::uint32_t(p);
   std::size_t k = first_unused;
   for (std::size_t p = first_unused; p < np; ++p) {
+    new_id[p] = std::uint32_t(k);  // for an unused point: never looked up
     if (!used[p]) continue;
-    new_id[p - first_unused] = PointId(k);
     pm.points[k] = pm.points[p];
     pm.point_class[k] = pm.point_class[p];
     ++k;
   }
   pm.points.resize(k);
   pm.point_class.resize(k);
-  for (PointId& p : pm.face_points)
-    if (p.idx >= first_unused) p = new_id[p.idx - first_unused];
+  for (PointId& p : pm.face_points) p = PointId(new_id[p.idx]);
   pm.points.shrink_to_fit();
   pm.point_class.shrink_to_fit();
   return res;

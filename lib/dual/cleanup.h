@@ -18,14 +18,13 @@ struct CleanupResult {
 
 // exact_pairs: pairs of points that coincide exactly (decided by the caller
 // with exact predicates). collapse_length: absolute length below which an edge
-// between two points of equal classification is collapsed (0: none). Edges of
-// the face loops between two points with ids below `scan_from` are not looked
-// for in the loops: the caller lists in short_pairs every such edge that is
-// shorter than collapse_length (the dual's tet-centre edges, found from the
-// primal triangles they cross); edges with an end at or above scan_from are
-// found face by face. Pass scan_from = 0 to test every loop edge.
+// between two points of equal classification is collapsed (0: none). Short
+// edges are looked for in short_pairs (pairs of points the caller found closer
+// than collapse_length: the dual's tet-centre edges, found from the primal
+// triangles they cross) and in the loops of scan_faces (sorted face ids:
+// every face with an edge that short_pairs does not cover).
 CleanupResult cleanup_dual(PolyMesh& mesh, const std::vector<std::pair<PointId, PointId>>& exact_pairs,
                            const std::vector<std::pair<PointId, PointId>>& short_pairs, double collapse_length,
-                           std::uint32_t scan_from);
+                           const std::vector<std::uint32_t>& scan_faces);
 
 }  // namespace polydual
