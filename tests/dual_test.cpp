@@ -138,6 +138,17 @@ void check_invariants(const TetSoup& soup, bool planar, const std::string& what)
   }
 }
 
+// Cells with 8 points and 6 quadrilateral faces (cubes and boxes).
+std::size_t count_boxes(const PolyMesh& pm) {
+  std::size_t boxes = 0;
+  for (std::size_t c = 0; c < pm.num_cells(); ++c) {
+    auto faces = pm.cell(CellId(c));
+    bool quads = std::all_of(faces.begin(), faces.end(), [&](HalfFace h) { return pm.face(h.face()).size() == 4; });
+    boxes += pm.cell_points(CellId(c)).size() == 8 && faces.size() == 6 && quads;
+  }
+  return boxes;
+}
+
 }  // namespace
 
 TEST(Dual, KuhnLatticeGivesCubes) {
@@ -147,14 +158,7 @@ TEST(Dual, KuhnLatticeGivesCubes) {
   PolyMesh pm = build_dual(m, {}, &st);
   EXPECT_EQ(pm.num_cells(), 125u);  // one per lattice vertex
   // Interior vertices (3^3 = 27) give cubes: 8 points, 6 quadrilateral faces.
-  std::size_t cubes = 0;
-  for (std::size_t c = 0; c < pm.num_cells(); ++c) {
-    auto pts = pm.cell_points(CellId(c));
-    auto faces = pm.cell(CellId(c));
-    bool quads = std::all_of(faces.begin(), faces.end(), [&](HalfFace h) { return pm.face(h.face()).size() == 4; });
-    if (pts.size() == 8 && faces.size() == 6 && quads) ++cubes;
-  }
-  EXPECT_EQ(cubes, 125u);  // boundary cells are boxes too (half/quarter/eighth cubes)
+  EXPECT_EQ(count_boxes(pm), 125u);  // boundary cells are boxes too (half/quarter/eighth cubes)
   auto verdicts = star_shaped_verdicts(pm);
   for (auto& v : verdicts) EXPECT_TRUE(v.valid);
   EXPECT_GT(st.merged_points, 0u);
@@ -175,15 +179,6 @@ TEST(Dual, ShortEdgeCollapseRestoresPerturbedLattice) {
   for (Point3& p : s.points)
     if (p.x > 0 && p.x < 4 && p.y > 0 && p.y < 4 && p.z > 0 && p.z < 4) p += Vec3{jitter(), jitter(), jitter()};
   ClassifiedTetMesh m = classify(s);
-  auto count_boxes = [](const PolyMesh& pm) {
-    std::size_t boxes = 0;
-    for (std::size_t c = 0; c < pm.num_cells(); ++c) {
-      auto faces = pm.cell(CellId(c));
-      bool quads = std::all_of(faces.begin(), faces.end(), [&](HalfFace h) { return pm.face(h.face()).size() == 4; });
-      boxes += pm.cell_points(CellId(c)).size() == 8 && faces.size() == 6 && quads;
-    }
-    return boxes;
-  };
   DualParams off;
   off.collapse_tolerance = 0;
   DualStats st_off, st_on;

@@ -74,8 +74,9 @@ struct DualPoints {
   SparsePoints tri_point;           // model-face triangles
   SparsePoints edge_point;          // model-edge edges
   std::vector<PointId> vert_point;  // per vertex (model vertices only)
-  std::vector<char> tet_well_centred;
-  std::vector<double> tet_centre_error;  // CentralPoint::error if well-centred, else -inf
+  // CentralPoint::error of a well-centred tet's centre; -inf marks a clamped
+  // centre (no tolerance admits it in the coincidence test).
+  std::vector<double> tet_centre_error;
   std::vector<char> tri_well_centred;  // by rank among the model-face triangles
 };
 
@@ -85,7 +86,6 @@ DualPoints make_points(const ClassifiedTetMesh& m, PolyMesh& pm, DualStats& st) 
   const std::size_t nt = m.num_tets();
   pm.points.resize(nt);
   pm.point_class.resize(nt);
-  d.tet_well_centred.assign(nt, 0);
   d.tet_centre_error.resize(nt);
   // Independent per tet: parallel, and the same result for any thread count.
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nt, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
@@ -94,11 +94,11 @@ DualPoints make_points(const ClassifiedTetMesh& m, PolyMesh& pm, DualStats& st) 
       CentralPoint c = tet_central_point(m.point(v[0]), m.point(v[1]), m.point(v[2]), m.point(v[3]));
       pm.points[t] = c.p;
       pm.point_class[t] = ModelRef{3, m.region(TetId(t))};
-      d.tet_well_centred[t] = c.well_centred;
       d.tet_centre_error[t] = c.well_centred ? c.error : -std::numeric_limits<double>::infinity();
     }
   });
-  st.well_centred_tets = std::size_t(std::count(d.tet_well_centred.begin(), d.tet_well_centred.end(), 1));
+  st.well_centred_tets = std::size_t(std::count_if(d.tet_centre_error.begin(), d.tet_centre_error.end(),
+                                                   [](double e) { return e >= 0; }));
   st.clamped_tets = nt - st.well_centred_tets;
   d.tri_point.init(m.num_triangles());
   const std::uint32_t first_tri_point = std::uint32_t(pm.num_points());
@@ -470,7 +470,6 @@ PolyMesh build_dual(const ClassifiedTetMesh& m, const DualParams& params, DualSt
     collapse = params.collapse_tolerance * mean_edge_length(m);
     pairs = point_pairs(m, d, pm, collapse);
   }
-  d.tet_well_centred = std::vector<char>();
   d.tet_centre_error = std::vector<double>();
   d.tri_well_centred = std::vector<char>();
   st.seconds_cleanup = since(t0);
