@@ -1,9 +1,13 @@
-// The polydual command (lib/cli): parses options, composes stages, prints.
+// The polydual command (lib/cli): parses options into params, calls the
+// library (lib/pipeline), prints.
 // Exit codes: 0 success, 1 error (bad input, I/O), 2 bad usage.
 #include <cstdio>
 #include <cstring>
 #include <new>
+#include <memory>
 #include <string>
+
+#include <tbb/global_control.h>
 
 #include "cli/commands.h"
 #include "core/error.h"
@@ -14,7 +18,7 @@ using namespace polydual::cli;
 namespace {
 struct Command {
   const CommandSpec* spec;
-  int (*run)(const Args&);
+  int (*run)(const Settings&);
 };
 const Command kCommands[] = {{&kDemo, cmd_demo},       {&kGenerate, cmd_generate}, {&kInfo, cmd_info},
                              {&kConvert, cmd_convert}, {&kCheck, cmd_check},       {&kOptimize, cmd_optimize}};
@@ -34,9 +38,13 @@ int main(int argc, char** argv) {
   for (const auto& c : kCommands) {
     if (c.spec->name != name) continue;
     try {
-      Args a = parse_args(*c.spec, argc - 2, argv + 2);
-      if (a.help) { std::fputs(help_text(*c.spec).c_str(), stdout); return 0; }
-      return c.run(a);
+      const Settings s = parse_command_line(*c.spec, argc - 2, argv + 2);
+      if (s.help) { std::fputs(help_text(*c.spec).c_str(), stdout); return 0; }
+      // Outputs do not depend on the thread count (deterministic stages).
+      std::unique_ptr<tbb::global_control> threads;
+      if (s.threads > 0)
+        threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, s.threads);
+      return c.run(s);
     } catch (const UsageFailure& e) {
       std::fprintf(stderr, "polydual %s: usage error: %s\n", name.c_str(), e.what());
       return 2;

@@ -21,8 +21,12 @@ Json& Json::push(Json value) {
 }
 
 Json* Json::find(const std::string& key) {
+  return const_cast<Json*>(static_cast<const Json*>(this)->find(key));
+}
+
+const Json* Json::find(const std::string& key) const {
   if (!std::holds_alternative<Object>(v_)) return nullptr;
-  for (auto& kv : std::get<Object>(v_))
+  for (const auto& kv : std::get<Object>(v_))
     if (kv.first == key) return &kv.second;
   return nullptr;
 }

@@ -36,8 +36,11 @@ class Json {
   // Array: append.
   Json& push(Json value);
   Json* find(const std::string& key);
+  // Object member or nullptr (also for a non-object).
+  const Json* find(const std::string& key) const;
   // Array element i (the array must have it).
   Json& at(std::size_t i) { return std::get<Array>(v_).at(i); }
+  const Json& at(std::size_t i) const { return std::get<Array>(v_).at(i); }
 
   std::string dump(int indent = 2) const;
 

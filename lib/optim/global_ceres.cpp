@@ -28,7 +28,7 @@
 
 #include "optim/context.h"
 #include "optim/objective.h"
-#include "quality/star_test.h"
+#include "quality/star_verdict.h"
 
 namespace polydual::optim_detail {
 namespace {

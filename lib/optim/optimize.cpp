@@ -7,7 +7,7 @@
 
 #include "core/error.h"
 #include "optim/context.h"
-#include "quality/star_test.h"
+#include "quality/star_verdict.h"
 
 namespace polydual {
 namespace optim_detail {
@@ -112,6 +112,44 @@ Json OptimReport::to_json() const {
   j.set("vertex_updates", static_cast<unsigned long long>(vertex_updates));
   j.set("colours", static_cast<unsigned long long>(colours));
   j.set("vertex_updates_per_second", seconds > 0 ? static_cast<double>(vertex_updates) / seconds : 0.0);
+  return j;
+}
+
+namespace {
+template <class T>
+void require_range(const char* field, T v, T lo, T hi, const char* unit) {
+  if (!(v >= lo && v <= hi))
+    throw UsageError(std::string("optimiser parameter ") + field + " = " + std::to_string(v) + " is outside [" +
+                     std::to_string(lo) + ", " + std::to_string(hi) + "]" + (*unit ? " " : "") + unit);
+}
+}  // namespace
+
+void OptimParams::validate() const {
+  require_range("max_iter", max_iter, 0, kMaxIterLimit, "iterations");
+  require_range("tol", tol, 0.0, kMaxTol, "(relative objective change)");
+  require_range("c", c, kMinDeltaC, kMaxDeltaC, "(eq. 3)");
+  require_range("newton_steps", newton_steps, 1, kMaxNewtonSteps, "steps per visit");
+  require_range("settle_move", settle_move, 0.0, 1.0, "(relative to cbrt(V0))");
+  require_range("untangle_sweeps", untangle_sweeps, 0, kMaxUntangleSweeps, "sweeps");
+  require_range("max_halvings", max_halvings, 0, kMaxHalvings, "halvings");
+  require_range("fd_step", fd_step, 1e-12, kMaxFdStep, "(relative to cbrt(V0))");
+  require_range("global_iterations_per_round", global_iterations_per_round, 1, kMaxIterLimit, "iterations");
+}
+
+Json OptimParams::to_json() const {
+  Json j = Json::object();
+  j.set("method", method_name(method));
+  j.set("metric", metric == Metric::Q1 ? "q1" : "q2");
+  j.set("derivatives", derivatives_name(derivatives));
+  j.set("max_iter", max_iter);
+  j.set("tol", tol);
+  j.set("c", c);
+  j.set("newton_steps", newton_steps);
+  j.set("settle_move", settle_move);
+  j.set("untangle_sweeps", untangle_sweeps);
+  j.set("max_halvings", max_halvings);
+  j.set("fd_step", fd_step);
+  j.set("global_iterations_per_round", global_iterations_per_round);
   return j;
 }
 

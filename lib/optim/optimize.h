@@ -24,12 +24,11 @@ struct OptimParams {
   // Corner set of the objective and of the reported quality. Default Q1 (the
   // paper found it untangles faster).
   Metric metric = Metric::Q1;
-  // Local scheme derivatives. DEFAULT CHANGED to Analytic: closed-form gradient
-  // and Hessian of the local objective in one pass over the point's corners
-  // (proofs/quality.md §6). That pass costs ~4 objective evaluations against 13
-  // for FiniteDifference, so a vertex update is ~3x cheaper. FiniteDifference is
-  // the paper's reference path (central differences of the objective,
-  // 1 + 2k + k(k-1) evaluations; CLI `--derivatives fd`). Exact: gradient by
+  // Local scheme derivatives. Analytic (default): closed-form gradient and
+  // Hessian of the local objective in one pass over the point's corners
+  // (proofs/quality.md §6), ~4 objective evaluations per visit against 13 for
+  // FiniteDifference, the paper's reference path (central differences,
+  // 1 + 2k + k(k-1) evaluations; `--derivatives fd`). Exact: gradient by
   // ceres::Jet, Hessian by central differences of it. All three minimise the
   // same objective. Ignored by Global (analytic adjoint gradient).
   Derivatives derivatives = Derivatives::Analytic;
@@ -38,9 +37,8 @@ struct OptimParams {
   // check). Default 20.
   int max_iter = 20;
   // Stop when |f_prev - f| < tol * |f_prev| after an iteration (Local: after a
-  // sweep of the smoothing phase). Default 1e-3 (was 1e-4: Gauss-Seidel
-  // smoothing then ran ~20 sweeps for the last ~0.2% of mean quality; at 1e-3
-  // a 10^5-tet dual stops after ~6-8 sweeps).
+  // sweep of the smoothing phase). Default 1e-3: a 10^5-tet dual stops after
+  // ~6-8 sweeps; 1e-4 runs ~20 sweeps for the last ~0.2% of mean quality.
   double tol = 1e-3;
   // c of eq. 3, delta = V0 / (1 + c exp(V/V0)). Default 50 (paper: 10..100).
   double c = kDefaultDeltaC;
@@ -64,6 +62,18 @@ struct OptimParams {
   double fd_step = 1e-4;
   // Global: L-BFGS iterations per round. Default 50.
   int global_iterations_per_round = 50;
+
+  // Ranges checked by validate() (and printed by the command's help).
+  static constexpr int kMaxIterLimit = 100000;
+  static constexpr double kMaxTol = 1.0;
+  static constexpr double kMinDeltaC = 1.0, kMaxDeltaC = 1000.0;  // paper: 10..100
+  static constexpr int kMaxNewtonSteps = 100, kMaxUntangleSweeps = 1000, kMaxHalvings = 60;
+  static constexpr double kMaxFdStep = 0.1;
+
+  // Throws UsageError naming the first field outside its range.
+  void validate() const;
+  // Every field (method, metric and derivatives by name).
+  Json to_json() const;
 };
 
 struct IterationRecord {

@@ -1,4 +1,4 @@
-#include "quality/star_test.h"
+#include "quality/star_verdict.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>

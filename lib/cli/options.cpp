@@ -1,0 +1,172 @@
+#include "cli/options.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+#include "generate/domains.h"
+
+namespace polydual::cli {
+
+namespace {
+
+std::string num(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+
+using K = OptionKind;
+constexpr double kNoRange = 0;
+
+// Ranges come from the params structs where a stage owns the value.
+const std::vector<OptionDef> kTable = {
+    {"-o", K::Text, "OUT", kNoRange, kNoRange, "output file or directory (required)", nullptr,
+     [](Settings& s, const std::string& v) { s.out = v; }},
+    {"--format", K::Choice, "vtu|foam", kNoRange, kNoRange,
+     "output format (default: from OUT: *.vtu -> vtu, a name without extension -> OpenFOAM case)", nullptr,
+     [](Settings& s, const std::string& v) { s.format = v; }},
+    {"--force", K::Flag, "", kNoRange, kNoRange,
+     "write an OpenFOAM case into an existing directory that is not a case", nullptr,
+     [](Settings& s, const std::string&) { s.force = true; }},
+    {"--feature-angle", K::Real, "DEG", 0, 180,
+     "dihedral angle (degrees) above which inferred model faces split",
+     [](const Settings& d) { return num(d.params.classify.feature_angle_deg); },
+     [](Settings& s, const std::string& v) { s.params.classify.feature_angle_deg = std::stod(v); }},
+    {"--no-cleanup", K::Flag, "", kNoRange, kNoRange, "skip the exact merge and the short-edge collapse", nullptr,
+     [](Settings& s, const std::string&) { s.params.dual.cleanup = false; }},
+    {"--collapse-tol", K::Real, "X", 0, 0.5, "short-edge collapse length, relative to the mean primal edge",
+     [](const Settings& d) { return num(d.params.dual.collapse_tolerance); },
+     [](Settings& s, const std::string& v) { s.params.dual.collapse_tolerance = std::stod(v); }},
+    {"--optimize", K::Choice, "none|local|global", kNoRange, kNoRange,
+     "untangle and smooth: the paper's local Newton scheme, a global Ceres L-BFGS solve, or none",
+     [](const Settings& d) { return std::string(method_name(d.params.optim.method)); },
+     [](Settings& s, const std::string& v) { s.params.optim.method = parse_method(v); }},
+    {"--metric", K::Choice, "q1|q2", kNoRange, kNoRange, "corner set of the optimiser's objective and quality",
+     [](const Settings& d) { return std::string(d.params.optim.metric == Metric::Q1 ? "q1" : "q2"); },
+     [](Settings& s, const std::string& v) { s.params.optim.metric = parse_metric(v); }},
+    {"--derivatives", K::Choice, "analytic|fd|exact", kNoRange, kNoRange,
+     "local-scheme Newton derivatives: closed form, finite differences (the paper) or ceres::Jet",
+     [](const Settings& d) { return std::string(derivatives_name(d.params.optim.derivatives)); },
+     [](Settings& s, const std::string& v) { s.params.optim.derivatives = parse_derivatives(v); }},
+    {"--max-iter", K::Int, "N", 0, OptimParams::kMaxIterLimit, "optimiser sweeps (local) or rounds (global), at most",
+     [](const Settings& d) { return std::to_string(d.params.optim.max_iter); },
+     [](Settings& s, const std::string& v) { s.params.optim.max_iter = std::stoi(v); }},
+    {"--primal", K::Text, "MESH", kNoRange, kNoRange,
+     "the tet mesh IN was built from: boundary points then slide on its model faces and edges", nullptr,
+     [](Settings& s, const std::string& v) { s.primal = v; }},
+    {"--tets", K::Int, "N", double(kMinTargetTets), double(kMaxTargetTets),
+     "target number of tets per domain (the result is within ~30%)",
+     [](const Settings& d) { return std::to_string(d.tets); },
+     [](Settings& s, const std::string& v) { s.tets = std::stoll(v); }},
+    {"--out", K::Text, "DIR", kNoRange, kNoRange, "output directory",
+     [](const Settings& d) { return d.out_dir; }, [](Settings& s, const std::string& v) { s.out_dir = v; }},
+    {"--domains", K::Text, "LIST", kNoRange, kNoRange, "comma-separated subset of cube,twomat,fichera,fracture",
+     [](const Settings& d) { return d.domains; }, [](Settings& s, const std::string& v) { s.domains = v; }},
+    {"--threads", K::Int, "N", 0, 1024, "worker threads (0: all cores); outputs do not depend on it",
+     [](const Settings& d) { return std::to_string(d.threads); },
+     [](Settings& s, const std::string& v) { s.threads = std::stoi(v); }},
+    {"--json", K::Flag, "", kNoRange, kNoRange, "print one JSON summary object on stdout", nullptr,
+     [](Settings& s, const std::string&) { s.json = true; }},
+    {"--quiet", K::Flag, "", kNoRange, kNoRange, "no warnings or progress on stderr", nullptr,
+     [](Settings& s, const std::string&) { s.quiet = true; }},
+};
+
+bool looks_like_option(const std::string& s) {
+  return s.size() > 1 && s[0] == '-' && !std::isdigit(static_cast<unsigned char>(s[1])) && s[1] != '.';
+}
+
+// Checks the value's type and range; throws UsageFailure naming the option.
+void check_value(const OptionDef& o, const std::string& v) {
+  const std::string name = o.name;
+  if (o.kind == K::Choice) {
+    const std::string choices = std::string("|") + o.value + "|";
+    if (v.empty() || v.find('|') != std::string::npos || choices.find("|" + v + "|") == std::string::npos)
+      throw UsageFailure("option " + name + ": '" + v + "' is not one of " + o.value);
+    return;
+  }
+  if (o.kind != K::Int && o.kind != K::Real) return;
+  char* end = nullptr;
+  errno = 0;
+  const double x = o.kind == K::Int ? double(std::strtoll(v.c_str(), &end, 10)) : std::strtod(v.c_str(), &end);
+  if (v.empty() || *end || errno || !std::isfinite(x))
+    throw UsageFailure("option " + name + ": '" + v + "' is not " + (o.kind == K::Int ? "an integer" : "a number"));
+  if (x < o.lo || x > o.hi)
+    throw UsageFailure("option " + name + ": " + v + " is outside [" + num(o.lo) + ", " + num(o.hi) + "]");
+}
+
+const OptionDef* find_in(const CommandSpec& spec, const std::string& name) {
+  for (const std::string& use : spec.options)
+    if (use.substr(0, use.find('=')) == name) return &option(name);
+  return nullptr;
+}
+
+// Applies the "=VALUE" default overrides of a command's option list.
+Settings command_defaults(const CommandSpec& spec, Settings d) {
+  for (const std::string& use : spec.options)
+    if (auto eq = use.find('='); eq != std::string::npos) option(use.substr(0, eq)).apply(d, use.substr(eq + 1));
+  return d;
+}
+
+void check_positional(const CommandSpec& spec, const Settings& s) {
+  if (s.help) return;
+  if (int(s.positional.size()) < spec.min_positional)
+    throw UsageFailure("missing argument for '" + spec.name + "': usage: polydual " + spec.synopsis);
+  if (int(s.positional.size()) > spec.max_positional)
+    throw UsageFailure("unexpected argument '" + s.positional[spec.max_positional] + "' for '" + spec.name + "'");
+}
+
+}  // namespace
+
+const std::vector<OptionDef>& option_table() { return kTable; }
+
+const OptionDef& option(const std::string& name) {
+  for (const OptionDef& o : kTable)
+    if (name == o.name) return o;
+  throw std::logic_error("option " + name + " is not declared in lib/cli/options.cpp");
+}
+
+Settings parse_command_line(const CommandSpec& spec, int argc, char** argv, Settings defaults) {
+  Settings s = command_defaults(spec, std::move(defaults));
+  for (int i = 0; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "-h" || arg == "--help") { s.help = true; continue; }
+    if (!looks_like_option(arg)) { s.positional.push_back(arg); continue; }
+    const auto eq = arg.find('=');
+    const std::string name = arg.substr(0, eq);
+    const OptionDef* o = find_in(spec, name);
+    if (!o) throw UsageFailure("unknown option '" + name + "' for '" + spec.name + "' (see polydual " + spec.name + " --help)");
+    std::string value;
+    if (o->kind == K::Flag) {
+      if (eq != std::string::npos) throw UsageFailure("option " + name + " takes no value");
+    } else if (eq != std::string::npos) {
+      value = arg.substr(eq + 1);
+    } else {
+      if (i + 1 >= argc) throw UsageFailure("option " + name + " needs a value (" + o->value + ")");
+      value = argv[++i];
+    }
+    check_value(*o, value);
+    o->apply(s, value);
+  }
+  check_positional(spec, s);
+  return s;
+}
+
+std::string help_text(const CommandSpec& spec, const Settings& defaults) {
+  const Settings d = command_defaults(spec, defaults);
+  std::ostringstream os;
+  os << "usage: polydual " << spec.synopsis << "\n\n" << spec.description << "\n\noptions:\n";
+  for (const std::string& use : spec.options) {
+    const OptionDef& o = option(use.substr(0, use.find('=')));
+    std::string lhs = std::string("  ") + o.name + (o.kind == K::Flag ? "" : std::string(" ") + o.value);
+    os << lhs << std::string(lhs.size() < 28 ? 28 - lhs.size() : 1, ' ') << o.help;
+    if (o.kind == K::Int || o.kind == K::Real) os << "; range [" << num(o.lo) << ", " << num(o.hi) << "]";
+    if (o.default_text) os << " (default " << o.default_text(d) << ")";
+    os << "\n";
+  }
+  os << "  -h, --help                  this help\n";
+  return os.str();
+}
+
+}  // namespace polydual::cli

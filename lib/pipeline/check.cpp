@@ -1,0 +1,45 @@
+#include "pipeline/check.h"
+
+#include <chrono>
+
+#include "io/vtu_poly_writer.h"
+#include "predicates/predicates.h"
+
+namespace polydual {
+
+CheckResult check_mesh(const PolyMesh& mesh, const ClassifiedTetMesh* primal, bool with_validation) {
+  const auto t0 = std::chrono::steady_clock::now();
+  CheckResult r;
+  if (with_validation) r.validation = validate(mesh, primal);
+  // The exact fallbacks are counted by shared counters (predicates.h): read
+  // the difference so concurrent checks of other meshes do not reset them.
+  const std::uint64_t exact0 = predicate_counters().star_exact.load();
+  r.verdicts = star_shaped_verdicts(mesh);
+  r.exact_fallbacks = predicate_counters().star_exact.load() - exact0;
+  for (const CellVerdict& v : r.verdicts) {
+    r.invalid_cells += !v.valid;
+    r.decomposition_tets += static_cast<std::uint64_t>(v.total_tets);
+  }
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+Json CheckResult::to_json() const {
+  Json j = Json::object();
+  j.set("invalid_cells", invalid_cells);
+  j.set("decomposition_tets", decomposition_tets);
+  j.set("exact_fallbacks", exact_fallbacks);
+  j.set("validation", validation.to_json());
+  return j;
+}
+
+std::vector<CellField> verdict_fields(const std::vector<CellVerdict>& verdicts) {
+  std::vector<std::int32_t> valid(verdicts.size()), bad(verdicts.size());
+  for (std::size_t c = 0; c < verdicts.size(); ++c) {
+    valid[c] = verdicts[c].valid;
+    bad[c] = verdicts[c].bad_tets;
+  }
+  return {CellField{"valid", std::move(valid)}, CellField{"bad_tets", std::move(bad)}};
+}
+
+}  // namespace polydual

@@ -1,0 +1,35 @@
+// The validity stage: topological and model checks (mesh/validate.h) joined
+// with the exact star-shaped verdict of every cell (quality/star_verdict.h).
+// `check`, `optimize`, `convert` and the demo all report through it.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "core/json.h"
+#include "io/vtu_poly_writer.h"
+#include "mesh/classified_tet_mesh.h"
+#include "mesh/poly_mesh.h"
+#include "mesh/validate.h"
+#include "quality/star_verdict.h"
+
+namespace polydual {
+
+struct CheckResult {
+  ValidationReport validation;
+  std::vector<CellVerdict> verdicts;  // one per cell, exact
+  std::size_t invalid_cells = 0;      // cells whose verdict is not valid
+  std::uint64_t decomposition_tets = 0;  // star-test tets evaluated
+  std::uint64_t exact_fallbacks = 0;     // of which reached the exact path
+  double seconds = 0;
+  Json to_json() const;  // counts only (the verdicts go into the cell data)
+};
+
+// primal may be null (a mesh read back from a file): model entities and the
+// primal volumes are then not checked. Without `with_validation` only the
+// verdicts are computed (validation stays default).
+CheckResult check_mesh(const PolyMesh& mesh, const ClassifiedTetMesh* primal, bool with_validation = true);
+
+// The per-cell arrays the writers store beside the mesh ("valid", "bad_tets").
+std::vector<CellField> verdict_fields(const std::vector<CellVerdict>& verdicts);
+
+}  // namespace polydual

@@ -1,0 +1,113 @@
+#include "pipeline/convert.h"
+
+#include "core/stopwatch.h"
+#include "io/read_tet_mesh.h"
+
+namespace polydual {
+
+namespace {
+// Runs one stage, times it and records it; returns the stage's value.
+template <class F>
+auto run_stage(ConvertReport& report, const StageObserver& observe, const char* name, F&& stage) {
+  const Stopwatch clock;
+  Json stats;
+  auto value = stage(stats);
+  report.stages.push_back(StageRecord{name, clock.seconds(), std::move(stats)});
+  if (observe) observe(report.stages.back());
+  return value;
+}
+
+
+// The stages from classify to the final check, appended to r.report.
+void run_pipeline(ConvertResult& r, const TetSoup& soup, const PipelineParams& params, const StageObserver& observe) {
+  ConvertReport& rep = r.report;
+  r.primal = run_stage(rep, observe, "classify", [&](Json& stats) {
+    ClassifyStats st;
+    ClassifiedTetMesh m = classify(soup, params.classify, &st);
+    stats = Json::object();
+    stats.set("validate", st.seconds_validate);
+    stats.set("order", st.seconds_order);
+    stats.set("topology", st.seconds_topology);
+    stats.set("classification", st.seconds_classification);
+    return m;
+  });
+  r.mesh = run_stage(rep, observe, "dual", [&](Json& stats) {
+    DualStats st;
+    PolyMesh pm = build_dual(r.primal, params.dual, &st);
+    stats = st.to_json();
+    return pm;
+  });
+  const bool optimise = params.optim.method != OptimParams::Method::None;
+  // Validation is topological and the optimiser moves points only: it runs
+  // once, on the mesh that is returned.
+  r.check = run_stage(rep, observe, "check", [&](Json& stats) {
+    CheckResult c = check_mesh(r.mesh, &r.primal, !optimise);
+    stats = c.to_json();
+    return c;
+  });
+  rep.invalid_before = r.check.invalid_cells;
+  if (optimise) {
+    run_stage(rep, observe, "optimize", [&](Json& stats) {
+      stats = optimize(r.mesh, &r.primal, params.optim).to_json();
+      return 0;
+    });
+    r.check = run_stage(rep, observe, "check_after", [&](Json& stats) {
+      CheckResult c = check_mesh(r.mesh, &r.primal);
+      stats = c.to_json();
+      return c;
+    });
+  }
+  rep.invalid_after = r.check.invalid_cells;
+}
+
+}  // namespace
+
+const StageRecord* ConvertReport::stage(const std::string& name) const {
+  for (const StageRecord& s : stages)
+    if (s.name == name) return &s;
+  return nullptr;
+}
+
+ConvertResult convert(const TetSoup& soup, const PipelineParams& params, const StageObserver& observe) {
+  params.validate();
+  const Stopwatch clock;
+  ConvertResult r;
+  run_pipeline(r, soup, params, observe);
+  r.report.seconds = clock.seconds();
+  return r;
+}
+
+Json write_result(const ConvertResult& r, const std::string& path, PolyFormat format) {
+  return write_poly_mesh(r.mesh, path, format, verdict_fields(r.check.verdicts));
+}
+
+ConvertResult convert_file(const std::string& in, const std::string& out, PolyFormat format,
+                           const PipelineParams& params, const StageObserver& observe) {
+  params.validate();
+  const Stopwatch clock;
+  ConvertResult r;
+  const TetSoup soup = run_stage(r.report, observe, "read", [&](Json& stats) {
+    TetSoup s = read_tet_mesh(in);
+    stats = Json::object();
+    stats.set("path", in);
+    return s;
+  });
+  run_pipeline(r, soup, params, observe);
+  r.written = run_stage(r.report, observe, "write", [&](Json& stats) {
+    Json w = write_result(r, out, format);
+    stats = w;
+    return w;
+  });
+  r.report.seconds = clock.seconds();
+  return r;
+}
+
+OptimizeResult optimize_mesh(PolyMesh& mesh, const ClassifiedTetMesh* primal, const OptimParams& params) {
+  params.validate();
+  OptimizeResult r;
+  r.optim = optimize(mesh, primal, params);
+  r.check = check_mesh(mesh, primal);
+  return r;
+}
+
+}  // namespace polydual

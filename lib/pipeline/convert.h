@@ -1,0 +1,70 @@
+// The library entry of polydual: the paper's pipeline as explicit stages
+// (docs/design.md, "Pipeline"):
+//   classify (§2.1, SPEC §3) -> [tet pre-optimisation: planned] -> build dual
+//   (Algorithm 1 steps 1-7) -> cleanup (§2.8) -> cells (step 8) -> check
+//   (exact star test, §3.1) -> [split: planned] -> optimise (§3.3) -> check.
+// Each stage takes its own params struct and leaves a StageRecord (name,
+// seconds, stats) in the report. Nothing here prints or exits; the command,
+// the experiments, the benchmarks and other programs call these entries.
+#pragma once
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/json.h"
+#include "io/write_poly_mesh.h"
+#include "mesh/classified_tet_mesh.h"
+#include "mesh/poly_mesh.h"
+#include "mesh/tet_soup.h"
+#include "pipeline/check.h"
+#include "pipeline/params.h"
+
+namespace polydual {
+
+struct StageRecord {
+  std::string name;  // "classify", "dual", "check", "optimize", ...
+  double seconds = 0;
+  Json stats;        // the stage's own stats record
+};
+
+struct ConvertReport {
+  std::vector<StageRecord> stages;  // in the order they ran
+  std::size_t invalid_before = 0;   // invalid cells of the dual before optimisation
+  std::size_t invalid_after = 0;    // ... at the end
+  double seconds = 0;               // all stages
+  const StageRecord* stage(const std::string& name) const;
+};
+
+struct ConvertResult {
+  ClassifiedTetMesh primal;  // the classified input (the optimiser and writers read it)
+  PolyMesh mesh;             // the polyhedral dual, optimised when asked
+  CheckResult check;         // validation and exact verdicts of `mesh` as returned
+  ConvertReport report;
+  Json written;              // convert_file: the writer's record
+};
+
+// Called after each stage with its record (progress, logging); may be empty.
+using StageObserver = std::function<void(const StageRecord&)>;
+
+// soup -> ConvertResult. Throws InputError for a bad mesh (naming soup.source
+// and the place) and UsageError for bad params.
+ConvertResult convert(const TetSoup& soup, const PipelineParams& params, const StageObserver& observe = {});
+
+// Writes r.mesh with its verdicts as cell data ("valid", "bad_tets").
+Json write_result(const ConvertResult& r, const std::string& path, PolyFormat format);
+
+// File to file: read any tet mesh format (io/read_tet_mesh.h), convert, write
+// (io/write_poly_mesh.h); the report gains the "read" and "write" stages. The
+// caller checks that `out` may be written before (nothing is written on error).
+ConvertResult convert_file(const std::string& in, const std::string& out, PolyFormat format,
+                           const PipelineParams& params, const StageObserver& observe = {});
+
+// The stages after the dual on their own (the `optimize` command starts from a
+// PolyMesh read back from a file): optimise in place, then check.
+struct OptimizeResult {
+  OptimReport optim;
+  CheckResult check;
+};
+OptimizeResult optimize_mesh(PolyMesh& mesh, const ClassifiedTetMesh* primal, const OptimParams& params);
+
+}  // namespace polydual

@@ -1,0 +1,23 @@
+// The parameters of the whole convert pipeline: one struct per stage, each
+// owning its defaults, units and ranges (see docs/design.md, "Parameters").
+// PipelineParams only groups them; validate() checks every stage's struct and
+// to_json() is what every output's summary records.
+#pragma once
+#include "classify/classify.h"
+#include "core/json.h"
+#include "dual/build_dual.h"
+#include "optim/optimize.h"
+
+namespace polydual {
+
+struct PipelineParams {
+  ClassifyParams classify;  // feature angle of the inference
+  DualParams dual;          // Algorithm 1 and its cleanup
+  OptimParams optim;        // untangling and smoothing (method None skips the stage)
+
+  // Throws UsageError naming the first bad field, its unit and its range.
+  void validate() const;
+  Json to_json() const;
+};
+
+}  // namespace polydual

@@ -1,0 +1,169 @@
+#include "pipeline/summary.h"
+
+#include <map>
+
+#include "core/error.h"
+
+namespace polydual {
+
+namespace {
+
+// At most this many invalid cells are listed one by one in a summary (the
+// counts by class cover them all).
+constexpr std::size_t kWhereLimit = 200;
+constexpr const char* kClassNames[4] = {"model_vertex", "model_edge", "model_face", "interior"};
+
+const char* face_kind_name(const ModelEntity& f) {
+  return f.regions.size() < 2 ? "external" : (f.regions[0] == f.regions[1] ? "fracture" : "interface");
+}
+
+Json xyz_json(const Point3& p) {
+  Json a = Json::array();
+  a.push(p.x);
+  a.push(p.y);
+  a.push(p.z);
+  return a;
+}
+
+// Mesh vertex id of each input vertex number (cells name their primal vertex
+// in the input's numbering).
+std::vector<std::uint32_t> mesh_ids_of_inputs(const ClassifiedTetMesh& primal) {
+  std::vector<std::uint32_t> id;
+  for (std::size_t v = 0; v < primal.num_vertices(); ++v) {
+    const std::uint32_t in = primal.input_vertex(VertexId(v));
+    if (in >= id.size()) id.resize(in + 1, VertexId::kInvalid);
+    id[in] = std::uint32_t(v);
+  }
+  return id;
+}
+
+// Where the invalid cells sit: the classification of their primal vertex
+// (paper §4: only at concave edges/corners and fracture tips).
+void add_invalid_where(Json& j, const PolyMesh& pm, const CheckResult& check, const ClassifiedTetMesh& primal) {
+  const std::vector<std::uint32_t> mesh_id = mesh_ids_of_inputs(primal);
+  std::size_t by_dim[4] = {0, 0, 0, 0};
+  Json where = Json::array();
+  std::size_t listed = 0;
+  for (std::size_t c = 0; c < check.verdicts.size(); ++c) {
+    if (check.verdicts[c].valid) continue;
+    const std::uint32_t in = pm.cell_primal[c].idx;
+    if (in >= mesh_id.size() || mesh_id[in] == VertexId::kInvalid)
+      throw InputError(primal.source(), "cell " + std::to_string(c + 1),
+                       "the dual cell's primal vertex " + std::to_string(in + 1) + " is not in this tet mesh");
+    const VertexId v(mesh_id[in]);
+    const ModelRef cls = primal.vertex_class(v);
+    ++by_dim[cls.dim];
+    if (listed++ >= kWhereLimit) continue;
+    Json o = Json::object();
+    o.set("cell", c);
+    o.set("primal_vertex", in);
+    o.set("class", kClassNames[cls.dim]);
+    o.set("tag", cls.tag);
+    o.set("xyz", xyz_json(primal.point(v)));
+    o.set("bad_tets", check.verdicts[c].bad_tets);
+    where.push(o);
+  }
+  Json by = Json::object();
+  for (int d = 0; d < 4; ++d) by.set(kClassNames[d], by_dim[d]);
+  j.set("invalid_by_class", by);
+  j.set("invalid_where", where);
+}
+
+// Per material: cells, dual volume (decomposition, double), primal volume.
+Json materials_json(const PolyMesh& pm, const ValidationReport& rep, const ClassifiedTetMesh* primal) {
+  std::map<std::int32_t, std::size_t> cells;
+  std::map<std::int32_t, double> primal_vol;
+  for (auto m : pm.cell_material) ++cells[m];
+  if (primal)
+    for (std::size_t t = 0; t < primal->num_tets(); ++t)
+      primal_vol[primal->region(TetId(t))] += primal->tet_volume(TetId(t));
+  Json mats = Json::array();
+  for (auto& [tag, n] : cells) {
+    Json o = Json::object();
+    o.set("tag", tag);
+    o.set("cells", n);
+    auto v = rep.material_volume.find(tag);
+    o.set("volume", v == rep.material_volume.end() ? 0.0 : v->second);
+    if (primal) o.set("primal_volume", primal_vol[tag]);
+    mats.push(o);
+  }
+  return mats;
+}
+
+}  // namespace
+
+Json model_summary(const ClassifiedTetMesh& m) {
+  Json model = Json::object();
+  for (int d = 0; d < 4; ++d) model.set(d == 0 ? "vertices" : d == 1 ? "edges" : d == 2 ? "faces" : "regions",
+                                        m.model().count(d));
+  Json faces = Json::array();
+  for (const ModelEntity& f : m.model().entities[2]) {
+    Json o = Json::object();
+    o.set("tag", f.tag);
+    o.set("kind", face_kind_name(f));
+    Json r = Json::array();
+    for (auto x : f.bounds) r.push(x);
+    o.set("regions", r);
+    faces.push(o);
+  }
+  model.set("face_list", faces);
+  return model;
+}
+
+Json mesh_summary(const PolyMesh& pm, const CheckResult& check, const ClassifiedTetMesh* primal) {
+  const ValidationReport& rep = check.validation;
+  Json j = Json::object();
+  j.set("cells", pm.num_cells());
+  j.set("faces", pm.num_faces());
+  j.set("points", pm.num_points());
+  j.set("invalid_cells", check.invalid_cells);
+  if (primal) add_invalid_where(j, pm, check, *primal);
+  j.set("closed_cells", rep.closed_cells);
+  j.set("slit_cells", rep.slit_cells);
+  j.set("face_errors", rep.face_errors);
+  j.set("negative_volume_cells", rep.negative_volume_cells);
+  j.set("materials", materials_json(pm, rep, primal));
+  Json miss = Json::array();
+  for (auto& s : rep.missing_model_entities) miss.push(s);
+  j.set("missing_model_entities", miss);
+  j.set("topology_ok", rep.ok());
+  return j;
+}
+
+Json convert_summary(const ConvertResult& r, const PipelineParams& params) {
+  Json j = Json::object();
+  if (const StageRecord* read = r.report.stage("read")) {
+    j.set("input", *read->stats.find("path"));
+  }
+  if (r.written.find("path")) j.set("output", r.written);
+  j.set("tets", r.primal.num_tets());
+  j.set("vertices", r.primal.num_vertices());
+  j.set("model", model_summary(r.primal));
+  Json mesh = mesh_summary(r.mesh, r.check, &r.primal);
+  for (const char* k : {"cells", "faces", "points", "invalid_cells", "closed_cells", "slit_cells", "face_errors",
+                        "negative_volume_cells", "materials", "missing_model_entities", "topology_ok",
+                        "invalid_by_class", "invalid_where"})
+    if (const Json* v = mesh.find(k)) j.set(k, *v);
+  j.set("invalid_before", r.report.invalid_before);
+  j.set("invalid_after", r.report.invalid_after);
+  const StageRecord* first_check = r.report.stage("check");
+  Json star = Json::object();
+  if (first_check) {
+    star.set("decomposition_tets", *first_check->stats.find("decomposition_tets"));
+    star.set("exact_fallbacks", *first_check->stats.find("exact_fallbacks"));
+  }
+  j.set("star_test", star);
+  const StageRecord* dual = r.report.stage("dual");
+  j.set("dual", dual ? dual->stats : Json());
+  const StageRecord* opt = r.report.stage("optimize");
+  j.set("optimize", opt ? opt->stats : Json());
+  j.set("params", params.to_json());
+  Json seconds = Json::object();
+  for (const StageRecord& s : r.report.stages)
+    seconds.set(s.name == "check" ? "star_test" : s.name, s.seconds);
+  seconds.set("total", r.report.seconds);
+  j.set("seconds", seconds);
+  return j;
+}
+
+}  // namespace polydual
