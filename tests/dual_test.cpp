@@ -11,7 +11,7 @@
 #include "dual/build_dual.h"
 #include "generate/random_mesh.h"
 #include "mesh/validate.h"
-#include "quality/star_test.h"
+#include "quality/star_verdict.h"
 
 using namespace polydual;
 

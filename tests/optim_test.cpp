@@ -17,7 +17,7 @@
 #include "optim/boundary.h"
 #include "optim/objective.h"
 #include "optim/optimize.h"
-#include "quality/star_test.h"
+#include "quality/star_verdict.h"
 #include "quality/stencil.h"
 
 namespace polydual {

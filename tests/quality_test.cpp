@@ -11,7 +11,7 @@
 #include "mesh/poly_mesh.h"
 #include "quality/corner.h"
 #include "quality/metrics.h"
-#include "quality/star_test.h"
+#include "quality/star_verdict.h"
 #include "quality/stencil.h"
 
 namespace polydual {
