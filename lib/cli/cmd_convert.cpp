@@ -19,7 +19,7 @@ const CommandSpec kConvert{
     "VTU (VTK_POLYHEDRON) or an OpenFOAM case directory (OUT/constant/polyMesh).",
     1, 1,
     {"-o", "--format", "--feature-angle", "--no-cleanup", "--collapse-tol", "--optimize", "--metric",
-     "--derivatives", "--max-iter", "--threads", "--json", "--quiet"}};
+     "--derivatives", "--max-iter", "--threads", "--json"}};
 
 const CommandSpec kCheck{
     "check", "check FILE.vtu [--json]",
