@@ -317,3 +317,21 @@ TEST(CliOptions, DemoOptions) {
   EXPECT_THAT(r.out, HasSubstr("fracture"));
   EXPECT_EQ(run("demo --out " + d.string() + " --domains klein").code, 2);
 }
+
+TEST(CliOptions, ProgressOnStderrUnlessQuiet) {
+  const std::string in = meshes().msh.string(), out = (scratch_root() / "p.vtu").string();
+  // POLYDUAL_PROGRESS_DELAY=0 shows every step (the default shows stages
+  // that have run for 2 s); stderr is not a terminal here: plain lines.
+  CmdResult shown = run("convert " + in + " -o " + out + " --max-iter 3 --json 2>&1 >/dev/null | cat >&2; "
+                        "POLYDUAL_PROGRESS_DELAY=0 " POLYDUAL_BINARY " convert " + in + " -o " + out + " --max-iter 3");
+  ASSERT_EQ(shown.code, 0) << shown.err;
+  EXPECT_THAT(shown.err, HasSubstr("polydual: optimize 1/3: invalid cells"));
+  EXPECT_THAT(shown.err, HasSubstr("mean quality"));
+  CmdResult quiet = run("convert " + in + " -o " + out + " --max-iter 3 --quiet; POLYDUAL_PROGRESS_DELAY=0 " POLYDUAL_BINARY
+                        " convert " + in + " -o " + out + " --max-iter 3 --quiet");
+  ASSERT_EQ(quiet.code, 0) << quiet.err;
+  EXPECT_EQ(quiet.err, "");
+  // A short run with the default delay prints no progress at all.
+  CmdResult fast = run("convert " + in + " -o " + out + " --optimize none");
+  EXPECT_THAT(fast.err, Not(HasSubstr("polydual: optimize")));
+}

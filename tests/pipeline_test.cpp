@@ -56,7 +56,7 @@ TEST(Pipeline, ConvertIsTheCompositionOfTheStages) {
   PipelineParams params;
   params.optim.method = OptimParams::Method::None;
   std::vector<std::string> observed;
-  const ConvertResult r = convert(soup, params, [&](const StageRecord& s) { observed.push_back(s.name); });
+  const ConvertResult r = convert(soup, params, ConvertHooks{[&](const StageRecord& s) { observed.push_back(s.name); }, {}});
   EXPECT_EQ(stage_names(r.report), (std::vector<std::string>{"classify", "dual", "check"}));
   EXPECT_EQ(observed, stage_names(r.report));
 
@@ -102,7 +102,7 @@ TEST(Pipeline, BadParamsAreRefusedBeforeAnyWork) {
   auto refused = [&](PipelineParams p, const char* word) {
     int stages = 0;
     try {
-      convert(soup, p, [&](const StageRecord&) { ++stages; });
+      convert(soup, p, ConvertHooks{[&](const StageRecord&) { ++stages; }, {}});
       ADD_FAILURE() << "accepted: " << word;
     } catch (const UsageError& e) {
       EXPECT_NE(std::string(e.what()).find(word), std::string::npos) << e.what();

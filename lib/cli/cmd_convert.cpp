@@ -19,7 +19,7 @@ const CommandSpec kConvert{
     "VTU (VTK_POLYHEDRON) or an OpenFOAM case directory (OUT/constant/polyMesh).",
     1, 1,
     {"-o", "--format", "--feature-angle", "--no-cleanup", "--collapse-tol", "--optimize", "--metric",
-     "--derivatives", "--max-iter", "--threads", "--json"}};
+     "--derivatives", "--max-iter", "--threads", "--json", "--quiet"}};
 
 const CommandSpec kCheck{
     "check", "check FILE.vtu [--json]",
@@ -31,7 +31,9 @@ const CommandSpec kCheck{
 int cmd_convert(const Settings& s) {
   if (s.out.empty()) throw UsageError("convert needs -o OUT");
   const PolyFormat format = poly_format_for(s.format, s.out);
-  const ConvertResult r = convert_file(s.positional[0], s.out, format, s.params);
+  ProgressPrinter progress(s.quiet);
+  const ConvertResult r = convert_file(s.positional[0], s.out, format, s.params, progress.hooks());
+  progress.end_line();
   const Json summary = convert_summary(r, s.params);
   if (s.json) print_json(summary);
   else print_convert_summary(summary);

@@ -20,7 +20,7 @@ const CommandSpec kOptimize{
     "Untangles and smooths a polyhedral mesh written by polydual (paper §3.3).",
     1, 1,
     {"-o", "--primal", "--feature-angle", "--optimize", "--metric", "--derivatives", "--max-iter", "--threads",
-     "--json"}};
+     "--json", "--quiet"}};
 
 int cmd_optimize(const Settings& s) {
   if (s.out.empty()) throw UsageError("optimize needs -o OUT.vtu");
@@ -38,7 +38,9 @@ int cmd_optimize(const Settings& s) {
     seconds.set("primal", clock.seconds());
   }
   clock = Stopwatch();
-  const OptimizeResult r = optimize_mesh(pm, primal.get(), s.params.optim);
+  ProgressPrinter progress(s.quiet);
+  const OptimizeResult r = optimize_mesh(pm, primal.get(), s.params.optim, progress.progress());
+  progress.end_line();
   seconds.set("optimize", clock.seconds());
   const Json w = write_poly_mesh(pm, s.out, format, verdict_fields(r.check.verdicts));
   Json j = mesh_summary(pm, r.check, nullptr);

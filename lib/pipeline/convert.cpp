@@ -8,20 +8,20 @@ namespace polydual {
 namespace {
 // Runs one stage, times it and records it; returns the stage's value.
 template <class F>
-auto run_stage(ConvertReport& report, const StageObserver& observe, const char* name, F&& stage) {
+auto run_stage(ConvertReport& report, const ConvertHooks& hooks, const char* name, F&& stage) {
   const Stopwatch clock;
   Json stats;
   auto value = stage(stats);
   report.stages.push_back(StageRecord{name, clock.seconds(), std::move(stats)});
-  if (observe) observe(report.stages.back());
+  if (hooks.stage_done) hooks.stage_done(report.stages.back());
   return value;
 }
 
 
 // The stages from classify to the final check, appended to r.report.
-void run_pipeline(ConvertResult& r, const TetSoup& soup, const PipelineParams& params, const StageObserver& observe) {
+void run_pipeline(ConvertResult& r, const TetSoup& soup, const PipelineParams& params, const ConvertHooks& hooks) {
   ConvertReport& rep = r.report;
-  r.primal = run_stage(rep, observe, "classify", [&](Json& stats) {
+  r.primal = run_stage(rep, hooks, "classify", [&](Json& stats) {
     ClassifyStats st;
     ClassifiedTetMesh m = classify(soup, params.classify, &st);
     stats = Json::object();
@@ -31,7 +31,7 @@ void run_pipeline(ConvertResult& r, const TetSoup& soup, const PipelineParams& p
     stats.set("classification", st.seconds_classification);
     return m;
   });
-  r.mesh = run_stage(rep, observe, "dual", [&](Json& stats) {
+  r.mesh = run_stage(rep, hooks, "dual", [&](Json& stats) {
     DualStats st;
     PolyMesh pm = build_dual(r.primal, params.dual, &st);
     stats = st.to_json();
@@ -40,18 +40,18 @@ void run_pipeline(ConvertResult& r, const TetSoup& soup, const PipelineParams& p
   const bool optimise = params.optim.method != OptimParams::Method::None;
   // Validation is topological and the optimiser moves points only: it runs
   // once, on the mesh that is returned.
-  r.check = run_stage(rep, observe, "check", [&](Json& stats) {
+  r.check = run_stage(rep, hooks, "check", [&](Json& stats) {
     CheckResult c = check_mesh(r.mesh, &r.primal, !optimise);
     stats = c.to_json();
     return c;
   });
   rep.invalid_before = r.check.invalid_cells;
   if (optimise) {
-    run_stage(rep, observe, "optimize", [&](Json& stats) {
-      stats = optimize(r.mesh, &r.primal, params.optim).to_json();
+    run_stage(rep, hooks, "optimize", [&](Json& stats) {
+      stats = optimize(r.mesh, &r.primal, params.optim, hooks.progress).to_json();
       return 0;
     });
-    r.check = run_stage(rep, observe, "check_after", [&](Json& stats) {
+    r.check = run_stage(rep, hooks, "check_after", [&](Json& stats) {
       CheckResult c = check_mesh(r.mesh, &r.primal);
       stats = c.to_json();
       return c;
@@ -68,11 +68,11 @@ const StageRecord* ConvertReport::stage(const std::string& name) const {
   return nullptr;
 }
 
-ConvertResult convert(const TetSoup& soup, const PipelineParams& params, const StageObserver& observe) {
+ConvertResult convert(const TetSoup& soup, const PipelineParams& params, const ConvertHooks& hooks) {
   params.validate();
   const Stopwatch clock;
   ConvertResult r;
-  run_pipeline(r, soup, params, observe);
+  run_pipeline(r, soup, params, hooks);
   r.report.seconds = clock.seconds();
   return r;
 }
@@ -82,18 +82,18 @@ Json write_result(const ConvertResult& r, const std::string& path, PolyFormat fo
 }
 
 ConvertResult convert_file(const std::string& in, const std::string& out, PolyFormat format,
-                           const PipelineParams& params, const StageObserver& observe) {
+                           const PipelineParams& params, const ConvertHooks& hooks) {
   params.validate();
   const Stopwatch clock;
   ConvertResult r;
-  const TetSoup soup = run_stage(r.report, observe, "read", [&](Json& stats) {
+  const TetSoup soup = run_stage(r.report, hooks, "read", [&](Json& stats) {
     TetSoup s = read_tet_mesh(in);
     stats = Json::object();
     stats.set("path", in);
     return s;
   });
-  run_pipeline(r, soup, params, observe);
-  r.written = run_stage(r.report, observe, "write", [&](Json& stats) {
+  run_pipeline(r, soup, params, hooks);
+  r.written = run_stage(r.report, hooks, "write", [&](Json& stats) {
     Json w = write_result(r, out, format);
     stats = w;
     return w;
@@ -102,10 +102,11 @@ ConvertResult convert_file(const std::string& in, const std::string& out, PolyFo
   return r;
 }
 
-OptimizeResult optimize_mesh(PolyMesh& mesh, const ClassifiedTetMesh* primal, const OptimParams& params) {
+OptimizeResult optimize_mesh(PolyMesh& mesh, const ClassifiedTetMesh* primal, const OptimParams& params,
+                             const ProgressFn& progress) {
   params.validate();
   OptimizeResult r;
-  r.optim = optimize(mesh, primal, params);
+  r.optim = optimize(mesh, primal, params, progress);
   r.check = check_mesh(mesh, primal);
   return r;
 }
