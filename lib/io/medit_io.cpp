@@ -39,12 +39,14 @@ bool is_unsupported_volume(const std::string& kw) {
 }
 
 // CGAL Mesh_3's output_to_medit with show_patches = false (its default)
-// writes every boundary and interface triangle twice, once per side with the
-// opposite orientation, each with the subdomain on that side (0 outside) as
-// its reference. Recognised when every triangle comes in such a pair (same
-// vertices, opposite orientation, two different references that are region
-// tags or 0): each pair becomes one triangle whose model face is the pair of
-// regions it separates, tagged 1, 2, ... in increasing (lower, higher) order.
+// writes every boundary and interface triangle twice, with opposite
+// orientations: an interface triangle with the lower then the higher subdomain
+// on its sides as references, a boundary triangle twice with its inner
+// subdomain (CGAL replaces the outside, 0, by the other side). Recognised when
+// every triangle comes in such a pair (same vertices, opposite orientation,
+// references that are region tags): each pair becomes one triangle whose
+// model face is the pair of subdomains it separates, tagged 1, 2, ... in
+// increasing (lower, higher) order, (r, r) standing for r and the outside.
 struct SidedTriangle {
   std::array<std::uint32_t, 3> sorted;
   bool odd;  // the permutation sorting the written order is odd
@@ -71,7 +73,6 @@ void merge_two_sided_triangles(TetSoup& soup) {
   const std::size_t n = soup.triangles.size();
   if (n == 0 || n % 2 != 0) return;
   std::vector<std::int32_t> regions(soup.tet_region);
-  regions.push_back(0);
   std::sort(regions.begin(), regions.end());
   auto is_region = [&](std::int32_t r) { return std::binary_search(regions.begin(), regions.end(), r); };
   const std::vector<SidedTriangle> s = sided(soup.triangles);
@@ -80,7 +81,7 @@ void merge_two_sided_triangles(TetSoup& soup) {
     const SidedTriangle &a = s[k], &b = s[k + 1];
     if (a.sorted != b.sorted || a.odd == b.odd || (k + 2 < n && s[k + 2].sorted == a.sorted)) return;
     const std::int32_t ra = soup.triangles[a.index].tag, rb = soup.triangles[b.index].tag;
-    if (ra == rb || !is_region(ra) || !is_region(rb)) return;
+    if (!is_region(ra) || !is_region(rb)) return;
     side_pair[k / 2] = {std::min(ra, rb), std::max(ra, rb)};
   }
   std::vector<std::pair<std::int32_t, std::int32_t>> pairs(side_pair);
@@ -94,9 +95,10 @@ void merge_two_sided_triangles(TetSoup& soup) {
   soup.triangles = std::move(merged);
   std::string list;
   for (std::size_t p = 0; p < pairs.size(); ++p) {
-    const std::string name = "subdomains " + std::to_string(pairs[p].first) + "|" + std::to_string(pairs[p].second);
-    soup.groups.push_back({2, std::int32_t(p + 1), name, {std::int32_t(p + 1)}});
-    if (p < 8) list += (p ? ", " : "") + std::to_string(p + 1) + " = " + name.substr(11);
+    const auto [lo, hi] = pairs[p];
+    const std::string sides = std::to_string(lo) + "|" + (lo == hi ? "outside" : std::to_string(hi));
+    soup.groups.push_back({2, std::int32_t(p + 1), "subdomains " + sides, {std::int32_t(p + 1)}});
+    if (p < 8) list += (p ? ", " : "") + std::to_string(p + 1) + " = " + sides;
   }
   if (pairs.size() > 8) list += ", ...";
   soup.warnings.push_back(soup.source + ": every triangle is written once per side (CGAL Mesh_3 output_to_medit, " +

@@ -5,9 +5,10 @@
 // CGAL Mesh_3's two conventions (output_to_medit) are both read:
 // show_patches = true writes each triangle once with its surface patch as ref;
 // show_patches = false (the default) writes every triangle twice, once per
-// side with that side's subdomain as ref: such pairs are merged into one
-// triangle tagged by its pair of subdomains (1, 2, ... in increasing pair
-// order; soup.groups names them "subdomains a|b", a warning says so).
+// side with a subdomain as ref (both sides' on an interface, the inner one
+// twice on the boundary): such pairs are merged into one triangle tagged by
+// its pair of subdomains (1, 2, ... in increasing pair order; soup.groups
+// names them "subdomains a|b" or "subdomains a|outside"; a warning says so).
 // Lower-dimensional elements not attached to the tets are dropped
 // (io/unattached.h).
 #pragma once

@@ -3,10 +3,13 @@
 // the plane x = 0.1 into subdomain 1 (x < 0.1) and subdomain 2, meshed once
 // and written by CGAL::IO::output_to_medit with both show_patches values:
 //   cgal_twomat_sides.mesh    show_patches = false (the default): every
-//                             boundary and interface triangle twice, once per
-//                             side, with that side's subdomain (0 outside);
+//                             boundary and interface triangle twice with
+//                             opposite orientations, refs the subdomains on
+//                             its sides (an interface: 1 then 2; a boundary
+//                             triangle: its subdomain twice);
 //   cgal_twomat_patches.mesh  show_patches = true: each triangle once, with
-//                             its surface patch (rebound to 1..3).
+//                             its surface patch number (3, 4, 5 here).
+// 1404 tets, 695 boundary and interface triangles.
 // Deterministic: CGAL's default random generator is seeded, meshing is
 // sequential and the time-limited optimisers (perturb, exude) are off.
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
