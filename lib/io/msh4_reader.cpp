@@ -236,8 +236,10 @@ struct Reader {
   // the volume's first physical tag for tets (Gmsh's material), the model
   // entity otherwise. Partition pieces map to their parent; pieces of a higher
   // dimensional parent are partition boundaries, not model entities.
+  // A dimension $Entities declares nothing of (meshio writes $Entities from
+  // its nodes' gmsh:dim_tags only) is not checked against it.
   Target target(int dim, std::int32_t entity) const {
-    if (!have_entities) return {Target::keep, entity, entity};
+    if (!have_entities || (entities[dim].empty() && pieces[dim].empty())) return {Target::keep, entity, entity};
     Target t{Target::keep, entity, entity};
     if (partitioned && dim == 3 && ghosts.count(entity)) return {Target::ghost, entity, entity};
     if (auto p = pieces[dim].find(entity); p != pieces[dim].end()) {
@@ -388,7 +390,7 @@ void Reader::make_groups() {
 }
 
 void Reader::finish() {
-  const bool complete = have_entities && warn_missing();
+  const bool complete = have_entities && !entities[2].empty() && !entities[3].empty() && warn_missing();
   if (have_entities) make_groups();
   if (partitioned)
     soup.warnings.push_back(soup.source + ": partitioned mesh (" + count_of(partitions, "partition", "partitions") +
