@@ -198,5 +198,27 @@ TEST(IoGmsh, PhysicalGroupsOnlyReadWhatIsThere) {
   EXPECT_EQ(classified(one).faces, 6u);  // a lone box
 }
 
+// The committed files of tests/data/gmsh, read without gmsh.
+TEST(IoGmsh, CommittedFiles) {
+  const std::string dir = kData + "/gmsh/";
+  const TetSoup sheet = read(dir + "sheet_save_all.msh");
+  EXPECT_EQ(sheet.ignored.surfaces, 1u);
+  EXPECT_EQ(classified(sheet).faces, 11u);
+  const TetSoup sphere = read(dir + "sphere_order2_bin.msh");
+  EXPECT_TRUE(has_warning(sphere, "second-order elements"));
+  EXPECT_EQ(classified(sphere).faces, 1u);
+  const TetSoup physical = read(dir + "twovol_v2_physical_bin.msh");
+  ASSERT_EQ(physical.groups.size(), 4u);
+  EXPECT_EQ(physical.groups[2].name, "left");
+  EXPECT_EQ(classified(physical).faces, 11u);
+  const TetSoup part = read(dir + "twovol_part2.msh");
+  EXPECT_TRUE(has_warning(part, "partitioned mesh (2 partitions) read as one"));
+  EXPECT_TRUE(part.full_classification);
+  EXPECT_EQ(classified(part), (Counts{part.tets.size(), 11, 20, 12}));
+  const TetSoup hole = read(dir + "hole_v2_save_all.msh");
+  EXPECT_EQ(hole.ignored.points, 4u);
+  EXPECT_EQ(classified(hole), (Counts{hole.tets.size(), 10, 24, 16}));
+}
+
 }  // namespace
 }  // namespace polydual
