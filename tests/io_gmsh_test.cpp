@@ -144,7 +144,8 @@ TEST(IoGmsh, SheetLargerThanTheBoxKeepsItsInsidePart) {
   EXPECT_EQ(s.ignored.surfaces, 1u);  // the frame of the sheet outside the box
   EXPECT_GE(s.ignored.curves, 4u);
   const Counts c = classified(s);
-  // 10 box face pieces (4 sides cut in two) + the inside sheet; one region.
+  // The sheet cuts the box in two volumes: 10 box face pieces (4 sides cut
+  // in two) + the inside part of the sheet, now their interface.
   expect_every_layout("sheet", {s.tets.size(), 11, c.edges, c.vertices});
   EXPECT_EQ(c.edges, 20u);
 }
