@@ -95,7 +95,7 @@ TEST(IoMalformed, UnknownElementType) {
 
 TEST(IoMalformed, HexIsUnsupported) {
   EXPECT_THAT(msh(kMsh2Head + kMsh2Nodes + "$Elements\n1\n1 5 2 1 1 1 2 3 4 1 2 3 4\n$EndElements\n"),
-              HasSubstr("line 13: unsupported element type 5 (only linear tets)"));
+              HasSubstr("line 13: unsupported element type 5 (only tets)"));
 }
 
 TEST(IoMalformed, NonIntegerTag) {
