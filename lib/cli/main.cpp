@@ -6,7 +6,10 @@
 #include <string>
 
 #include "cli/commands.h"
+#include "cli/pipeline.h"
 #include "core/error.h"
+#include "core/interrupt.h"
+#include "io/output_guard.h"
 
 using namespace polydual;
 using namespace polydual::cli;
@@ -28,6 +31,7 @@ void usage(std::FILE* f) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  install_interrupt_handlers();
   if (argc < 2) { usage(stderr); return 2; }
   const std::string name = argv[1];
   if (name == "-h" || name == "--help" || name == "help") { usage(stdout); return 0; }
@@ -36,7 +40,17 @@ int main(int argc, char** argv) {
     try {
       Args a = parse_args(*c.spec, argc - 2, argv + 2);
       if (a.help) { std::fputs(help_text(*c.spec).c_str(), stdout); return 0; }
+      if (a.has("-o")) {  // before any work: never replace an input or a directory polydual did not write
+        std::vector<std::string> in = name == "generate" ? std::vector<std::string>{} : a.positional;
+        if (a.has("--primal")) in.push_back(a.get("--primal"));
+        const bool foam = name == "convert" && output_format(a.get("--format"), a.get("-o")) == "foam";
+        check_output_target(in, a.get("-o"), foam ? OutputKind::FoamCase : OutputKind::File, false,
+                            name == "generate" ? "" : ".vtu");
+      }
       return c.run(a);
+    } catch (const Interrupted& e) {  // the writers removed their temporaries
+      std::fprintf(stderr, "polydual %s: interrupted\n", name.c_str());
+      return e.exit_status();
     } catch (const UsageFailure& e) {
       std::fprintf(stderr, "polydual %s: usage error: %s\n", name.c_str(), e.what());
       return 2;
