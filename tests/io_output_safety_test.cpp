@@ -284,10 +284,11 @@ TEST(AtomicFile, InterruptStopsTheWriteBetweenChunksAndKeepsTheOldFile) {
   // Interrupted before it starts: nothing is created at all.
   EXPECT_THROW(write_file_atomically(d / "new.vtu", [](std::ostream& os) { os << "x"; }), Interrupted);
   EXPECT_FALSE(fs::exists(d / "new.vtu"));
-  // Interrupted after the last byte but before the rename: the old file stays.
+  // Interrupted after the last byte reached the file, before the rename: the
+  // old file stays.
   clear_interrupt();
   EXPECT_THROW(write_file_atomically(f, [](std::ostream& os) {
-                 os << "complete";
+                 os << "complete" << std::flush;
                  request_interrupt(SIGINT);
                }),
                Interrupted);
@@ -545,7 +546,7 @@ TEST(FoamSafety, AFailureMidWriteKeepsThePreviousCaseAndNoTemporary) {
   put(d / "0" / "p", "user field");
   const auto before = snapshot(d.parent_path());
   {
-    // points (~1.7 kB) fits, faces (~15 kB) does not: a failure with some
+    // points (3.2 kB) fits, faces (14 kB) does not: a failure with some
     // files of the new polyMesh complete and one half written.
     FileSizeLimit limit(8000);
     try {

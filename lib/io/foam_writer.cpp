@@ -10,6 +10,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "io/output_guard.h"
 
 namespace polydual {
@@ -315,6 +316,7 @@ FoamReport write_foam(const PolyMesh& mesh, const std::string& case_dir, const F
   if (options.patch_type.empty() || options.patch_type.find_first_of(" ;{}\"") != std::string::npos)
     throw UsageError("write_foam: bad patch type '" + options.patch_type + "'");
   check_case_directory(case_dir, options.force);
+  throw_if_interrupted();
   FoamReport report;
   const FoamCase fc = build_case(mesh, report);
   const fs::path dir(case_dir), poly = dir / "constant" / "polyMesh";
