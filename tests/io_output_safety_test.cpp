@@ -196,6 +196,15 @@ TEST(Interrupt, HandlersRecordTheSignalAndThrowIfInterruptedReportsIt) {
   struct sigaction now;
   sigaction(SIGTERM, nullptr, &now);
   EXPECT_EQ(now.sa_handler, SIG_DFL);
+  // An ignored signal stays ignored.
+  std::signal(SIGINT, SIG_IGN);
+  install_interrupt_handlers();
+  sigaction(SIGINT, nullptr, &now);
+  EXPECT_EQ(now.sa_handler, SIG_IGN);
+  sigaction(SIGTERM, nullptr, &now);
+  EXPECT_NE(now.sa_handler, SIG_DFL);
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
 }
 
 // ---------------------------------------------------------------------------

@@ -34,8 +34,12 @@ void install_interrupt_handlers() {
   // resume rather than fail with EINTR; the writers poll the flag themselves.
   // SA_RESETHAND: the second signal takes the default action (terminates).
   sa.sa_flags = SA_RESTART | SA_RESETHAND;
-  sigaction(SIGINT, &sa, nullptr);
-  sigaction(SIGTERM, &sa, nullptr);
+  for (int sig : {SIGINT, SIGTERM}) {
+    // A signal ignored at startup stays ignored (the shell's `cmd &`, nohup).
+    struct sigaction old;
+    if (sigaction(sig, nullptr, &old) == 0 && old.sa_handler == SIG_IGN) continue;
+    sigaction(sig, &sa, nullptr);
+  }
 }
 
 bool interrupted() noexcept { return g_signal.load(std::memory_order_relaxed) != 0; }

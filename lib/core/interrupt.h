@@ -22,7 +22,8 @@ class Interrupted : public std::runtime_error {
 
 // Installs the SIGINT and SIGTERM handlers (for the command's main). The first
 // signal is recorded; the handler then reverts to the default action, so a
-// second Ctrl-C stops a computation that does not poll at once.
+// second Ctrl-C stops a computation that does not poll at once. A signal that
+// is ignored when the process starts (a shell's background job) stays ignored.
 void install_interrupt_handlers();
 
 // True once SIGINT or SIGTERM arrived. Cheap (one relaxed atomic load): fit
