@@ -47,10 +47,10 @@ Json run_domain(Domain d, const Settings& s, const std::filesystem::path& dir) {
   write_domain_msh(d, static_cast<std::size_t>(s.tets), msh);
   const double gen = clock.seconds();
   ProgressPrinter progress(s.quiet);
-  const ConvertResult r = convert_file(msh, vtu, PolyFormat::Vtu, s.params, progress.hooks());
+  const ConvertResult r = convert_file(msh, vtu, PolyFormat::Vtu, s.params, progress.hooks(), s.write);
   progress.end_line();
   Json j = convert_summary(r, s.params);
-  j.set("foam", write_poly_mesh(r.mesh, (dir / (name + "_case")).string(), PolyFormat::Foam));
+  j.set("foam", write_poly_mesh(r.mesh, (dir / (name + "_case")).string(), PolyFormat::Foam, {}, s.write));
   const PolyMesh back = read_vtu_poly(vtu);
   const Json chk = mesh_summary(back, check_mesh(back, nullptr), nullptr);
   j.set("domain", name);

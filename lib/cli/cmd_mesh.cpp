@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "core/stopwatch.h"
 #include "generate/domains.h"
+#include "io/output_guard.h"
 #include "io/read_tet_mesh.h"
 #include "io/write_tet_mesh.h"
 #include "pipeline/summary.h"
@@ -30,6 +31,7 @@ const CommandSpec kInfo{
 int cmd_generate(const Settings& s) {
   const Domain d = parse_domain(s.positional[0]);
   if (s.out.empty()) throw UsageError("generate needs -o FILE");
+  check_output_target({}, s.out, OutputKind::File, false);
   const Stopwatch clock;
   const auto n = static_cast<std::size_t>(s.tets);
   if (std::filesystem::path(s.out).extension() == ".msh") write_domain_msh(d, n, s.out);

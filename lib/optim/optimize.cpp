@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "optim/context.h"
 #include "quality/star_verdict.h"
 
@@ -50,6 +51,7 @@ double Context::objective(std::span<const Point3> pts) const {
 }
 
 void Context::record(int iteration) {
+  throw_if_interrupted();  // between iterations: Ctrl-C stops a long run promptly
   IterationRecord r;
   r.iteration = iteration;
   r.objective = objective(mesh.points);

@@ -1,14 +1,18 @@
 #include "pipeline/convert.h"
 
+#include "core/interrupt.h"
 #include "core/stopwatch.h"
+#include "io/output_guard.h"
 #include "io/read_tet_mesh.h"
 
 namespace polydual {
 
 namespace {
-// Runs one stage, times it and records it; returns the stage's value.
+// Runs one stage, times it and records it; returns the stage's value. A
+// pending interrupt (Ctrl-C, SIGTERM) stops the pipeline between stages.
 template <class F>
 auto run_stage(ConvertReport& report, const ConvertHooks& hooks, const char* name, F&& stage) {
+  throw_if_interrupted();
   const Stopwatch clock;
   Json stats;
   auto value = stage(stats);
@@ -77,13 +81,17 @@ ConvertResult convert(const TetSoup& soup, const PipelineParams& params, const C
   return r;
 }
 
-Json write_result(const ConvertResult& r, const std::string& path, PolyFormat format) {
-  return write_poly_mesh(r.mesh, path, format, verdict_fields(r.check.verdicts));
+Json write_result(const ConvertResult& r, const std::string& path, PolyFormat format,
+                  const PolyWriteOptions& options) {
+  return write_poly_mesh(r.mesh, path, format, verdict_fields(r.check.verdicts), options);
 }
 
 ConvertResult convert_file(const std::string& in, const std::string& out, PolyFormat format,
-                           const PipelineParams& params, const ConvertHooks& hooks) {
+                           const PipelineParams& params, const ConvertHooks& hooks, const PolyWriteOptions& options) {
   params.validate();
+  const std::string inputs[] = {in};
+  check_output_target(inputs, out, format == PolyFormat::Foam ? OutputKind::FoamCase : OutputKind::File,
+                      options.foam.force, format == PolyFormat::Vtu ? ".vtu" : "");
   const Stopwatch clock;
   ConvertResult r;
   const TetSoup soup = run_stage(r.report, hooks, "read", [&](Json& stats) {
@@ -94,7 +102,7 @@ ConvertResult convert_file(const std::string& in, const std::string& out, PolyFo
   });
   run_pipeline(r, soup, params, hooks);
   r.written = run_stage(r.report, hooks, "write", [&](Json& stats) {
-    Json w = write_result(r, out, format);
+    Json w = write_result(r, out, format, options);
     stats = w;
     return w;
   });

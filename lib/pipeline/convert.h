@@ -55,13 +55,17 @@ struct ConvertHooks {
 ConvertResult convert(const TetSoup& soup, const PipelineParams& params, const ConvertHooks& hooks = {});
 
 // Writes r.mesh with its verdicts as cell data ("valid", "bad_tets").
-Json write_result(const ConvertResult& r, const std::string& path, PolyFormat format);
+Json write_result(const ConvertResult& r, const std::string& path, PolyFormat format,
+                  const PolyWriteOptions& options = {});
 
 // File to file: read any tet mesh format (io/read_tet_mesh.h), convert, write
-// (io/write_poly_mesh.h); the report gains the "read" and "write" stages. The
-// caller checks that `out` may be written before (nothing is written on error).
+// (io/write_poly_mesh.h); the report gains the "read" and "write" stages.
+// Before any work `out` is checked (io/output_guard.h: never an input, never a
+// directory polydual did not write unless options.foam.force); nothing is
+// written on error or interruption.
 ConvertResult convert_file(const std::string& in, const std::string& out, PolyFormat format,
-                           const PipelineParams& params, const ConvertHooks& hooks = {});
+                           const PipelineParams& params, const ConvertHooks& hooks = {},
+                           const PolyWriteOptions& options = {});
 
 // The stages after the dual on their own (the `optimize` command starts from a
 // PolyMesh read back from a file): optimise in place, then check.
