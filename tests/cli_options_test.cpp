@@ -335,3 +335,65 @@ TEST(CliOptions, ProgressOnStderrUnlessQuiet) {
   CmdResult fast = run("convert " + in + " -o " + out + " --optimize none");
   EXPECT_THAT(fast.err, Not(HasSubstr("polydual: optimize")));
 }
+
+TEST(CliOptions, IgnoredEntitiesAreCountedAndWarned) {
+  // Gmsh writes the part of a fragmented sheet that lies outside the volume,
+  // and construction points: dropped, counted, one warning line each.
+  const std::string sheet = std::string(POLYDUAL_TEST_DATA) + "/gmsh/sheet_save_all.msh";
+  CmdResult info = run("info " + sheet + " --json");
+  ASSERT_EQ(info.code, 0) << info.err;
+  EXPECT_GT(jnum(info.out, "sum(d['ignored'].values())"), 0);
+  EXPECT_THAT(info.err, HasSubstr("polydual: warning: "));
+  EXPECT_THAT(info.err, HasSubstr("sheet_save_all.msh"));
+  CmdResult c = run("convert " + sheet + " -o " + (scratch_root() / "sheet.vtu").string() + " --optimize none --json");
+  ASSERT_EQ(c.code, 0) << c.err;
+  EXPECT_EQ(jq(c.out, "d['ignored']"), jq(info.out, "d['ignored']"));
+  EXPECT_GT(jnum(c.out, "len(d['warnings'])"), 0);
+  EXPECT_THAT(c.err, HasSubstr("polydual: warning: "));
+  CmdResult quiet = run("info " + sheet + " --quiet");
+  EXPECT_EQ(quiet.code, 0);
+  EXPECT_EQ(quiet.err, "");
+}
+
+TEST(CliOptions, VtuEncodingAndCompression) {
+  const std::string in = meshes().msh.string();
+  const fs::path d = scratch_root();
+  struct Case {
+    const char* opts;
+    const char* file;
+    const char* marker;
+  };
+  const Case cases[] = {{"", "e_b64.vtu", "format=\"binary\""},
+                        {"--vtu-encoding raw", "e_raw.vtu", "<AppendedData encoding=\"raw\">"},
+                        {"--vtu-encoding ascii", "e_ascii.vtu", "format=\"ascii\""},
+                        {"--zlib 6", "e_zlib.vtu", "compressor=\"vtkZLibDataCompressor\""}};
+  std::string cells;
+  for (const Case& k : cases) {
+    CmdResult r = run("convert " + in + " -o " + (d / k.file).string() + " --optimize none " + k.opts);
+    ASSERT_EQ(r.code, 0) << k.opts << r.err;
+    EXPECT_THAT(slurp(d / k.file), HasSubstr(k.marker)) << k.opts;
+    CmdResult chk = run("check " + (d / k.file).string() + " --json");
+    ASSERT_EQ(chk.code, 0) << k.opts << chk.err;
+    if (cells.empty()) cells = jq(chk.out, "d['cells']");
+    EXPECT_EQ(jq(chk.out, "d['cells']"), cells) << k.opts;
+  }
+  EXPECT_LT(fs::file_size(d / "e_zlib.vtu"), fs::file_size(d / "e_b64.vtu"));
+  EXPECT_EQ(run("convert " + in + " -o " + (d / "e_bad.vtu").string() + " --zlib 6 --vtu-encoding ascii").code, 2);
+}
+
+TEST(CliOptions, ForceAndOutputGuard) {
+  const std::string in = meshes().msh.string();
+  const fs::path d = scratch_root() / "guard";
+  fs::create_directories(d / "mine");
+  std::ofstream(d / "mine/notes.txt") << "user data";
+  // A directory that is not a case is refused without --force, untouched.
+  CmdResult r = run("convert " + in + " -o " + (d / "mine").string() + " --optimize none");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_FALSE(fs::exists(d / "mine/constant"));
+  ASSERT_EQ(run("convert " + in + " -o " + (d / "mine").string() + " --optimize none --force").code, 0);
+  EXPECT_TRUE(fs::exists(d / "mine/constant/polyMesh/owner"));
+  EXPECT_EQ(slurp(d / "mine/notes.txt"), "user data");
+  // The input is never the output.
+  EXPECT_EQ(run("convert " + in + " -o " + in + " --format vtu --force").code, 2);
+  EXPECT_TRUE(fs::exists(in));
+}

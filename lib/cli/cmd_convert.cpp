@@ -34,6 +34,7 @@ int cmd_convert(const Settings& s) {
   ProgressPrinter progress(s.quiet);
   const ConvertResult r = convert_file(s.positional[0], s.out, format, s.params, progress.hooks(), s.write);
   progress.end_line();
+  print_warnings(r.warnings, s.quiet);
   const Json summary = convert_summary(r, s.params);
   if (s.json) print_json(summary);
   else print_convert_summary(summary);

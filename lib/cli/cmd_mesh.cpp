@@ -26,7 +26,7 @@ const CommandSpec kInfo{
     "info", "info FILE [--json] [--feature-angle DEG]",
     "Reads and classifies a tet mesh; prints its size and its geometric model.",
     1, 1,
-    {"--feature-angle", "--json"}};
+    {"--feature-angle", "--json", "--quiet"}};
 
 int cmd_generate(const Settings& s) {
   const Domain d = parse_domain(s.positional[0]);
@@ -64,6 +64,7 @@ int cmd_info(const Settings& s) {
   Stopwatch clock;
   const TetSoup soup = read_tet_mesh(path);
   seconds.set("read", clock.seconds());
+  print_warnings(soup.warnings, s.quiet);
   clock = Stopwatch();
   const ClassifiedTetMesh m = classify(soup, s.params.classify);
   seconds.set("classify", clock.seconds());
@@ -74,6 +75,7 @@ int cmd_info(const Settings& s) {
   j.set("vertices", m.num_vertices());
   j.set("triangles", m.num_triangles());
   j.set("edges", m.num_edges());
+  j.set("ignored", ignored_summary(soup.ignored));
   j.set("model", model);
   Json params = Json::object();
   params.set("feature_angle_deg", s.params.classify.feature_angle_deg);

@@ -10,6 +10,11 @@ namespace polydual::cli {
 
 std::string json_text(const Json& j) { return j.dump(0); }
 
+void print_warnings(const std::vector<std::string>& warnings, bool quiet) {
+  if (quiet) return;
+  for (const std::string& w : warnings) std::fprintf(stderr, "polydual: warning: %s\n", w.c_str());
+}
+
 void print_json(const Json& j) { std::cout << j.dump() << "\n"; }
 
 void print_convert_summary(const Json& j) {

@@ -11,6 +11,8 @@
 namespace polydual::cli {
 
 void print_convert_summary(const Json& summary);
+// The reader's warnings on stderr, one line each (nothing when quiet).
+void print_warnings(const std::vector<std::string>& warnings, bool quiet);
 void print_json(const Json& j);  // one object on stdout
 std::string json_text(const Json& j);  // compact one-line dump of a value
 

@@ -25,6 +25,8 @@ auto run_stage(ConvertReport& report, const ConvertHooks& hooks, const char* nam
 // The stages from classify to the final check, appended to r.report.
 void run_pipeline(ConvertResult& r, const TetSoup& soup, const PipelineParams& params, const ConvertHooks& hooks) {
   ConvertReport& rep = r.report;
+  r.ignored = soup.ignored;
+  r.warnings = soup.warnings;
   r.primal = run_stage(rep, hooks, "classify", [&](Json& stats) {
     ClassifyStats st;
     ClassifiedTetMesh m = classify(soup, params.classify, &st);

@@ -42,6 +42,8 @@ struct ConvertResult {
   CheckResult check;         // validation and exact verdicts of `mesh` as returned
   ConvertReport report;
   Json written;              // convert_file: the writer's record
+  IgnoredEntities ignored;   // what the reader dropped (unattached entities)
+  std::vector<std::string> warnings;  // the reader's warnings, one line each
 };
 
 // What a caller sees while the pipeline runs; every member may be empty.
