@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <numeric>
+#include <stdexcept>
 
 #include "core/error.h"
 
@@ -44,6 +45,17 @@ const ModelEntity* ModelTopology::find(int dim, std::int32_t tag) const {
   auto it = std::lower_bound(v.begin(), v.end(), tag,
                              [](const ModelEntity& e, std::int32_t t) { return e.tag < t; });
   return (it != v.end() && it->tag == tag) ? &*it : nullptr;
+}
+
+FaceKind face_kind(const ModelEntity& face) {
+  if (face.regions.size() < 2) return FaceKind::External;
+  return face.regions[0] == face.regions[1] ? FaceKind::Fracture : FaceKind::Interface;
+}
+
+FaceKind ModelTopology::face_kind(std::int32_t tag) const {
+  const ModelEntity* e = find(2, tag);
+  if (!e) throw std::out_of_range("ModelTopology::face_kind: no model face with tag " + std::to_string(tag));
+  return polydual::face_kind(*e);
 }
 
 EdgeId ClassifiedTetMesh::find_edge(VertexId a, VertexId b) const {

@@ -76,10 +76,18 @@ struct ModelEntity {
   std::vector<std::int32_t> regions; // for faces: regions on its sides (1 or 2 tags, equal twice for a fracture)
 };
 
+// The kind of a model face (dim 2) from its regions: one region listed ->
+// External; two equal -> Fracture (the same region on both sides); two
+// different -> Interface. The one place this rule is written.
+FaceKind face_kind(const ModelEntity& face);
+
 struct ModelTopology {
   std::array<std::vector<ModelEntity>, 4> entities;  // by dimension, sorted by tag
   const ModelEntity* find(int dim, std::int32_t tag) const;
   std::size_t count(int dim) const { return entities[dim].size(); }
+  // face_kind() of the model face `tag`; a tag that names no model face is a
+  // caller's error (std::out_of_range naming the tag).
+  FaceKind face_kind(std::int32_t tag) const;
 };
 
 class ClassifiedTetMesh {
