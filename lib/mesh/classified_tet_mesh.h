@@ -275,6 +275,15 @@ class TetMeshBuilder {
   static std::vector<std::int32_t>& triangle_face(ClassifiedTetMesh& m) { return m.tri_face_; }
   static constexpr std::int32_t kNoFace = ClassifiedTetMesh::kNoFace;
   static ModelTopology& model(ClassifiedTetMesh& m) { return m.model_; }
+
+ private:
+  // build_topology()'s phases, in order (lib/mesh/classified_tet_mesh.cpp).
+  struct LowVertexBuckets;
+  static void build_vertex_stars(ClassifiedTetMesh& m);
+  static LowVertexBuckets bucket_by_low_vertices(const ClassifiedTetMesh& m);
+  static std::size_t match_faces(ClassifiedTetMesh& m, const LowVertexBuckets& b);
+  static void number_triangles(ClassifiedTetMesh& m, std::size_t num_tris);
+  static void number_edges(ClassifiedTetMesh& m, const LowVertexBuckets& b, std::size_t num_tris);
 };
 
 }  // namespace polydual
