@@ -1,23 +1,18 @@
 // Range checks of parameters structs (their validate()): the message names the
 // field, its unit and the allowed interval, so a command can pass it on as is.
 #pragma once
-#include <cstdio>
-#include <cstdlib>
+#include <charconv>
 #include <string>
 
 #include "core/error.h"
 
 namespace polydual {
 
-// The shortest decimal that reads back as x (%.17g would print 0.001 as
-// 0.0010000000000000000208).
+// The shortest decimal that reads back as x ("0.001", "180", "nan").
 inline std::string format_param(double x) {
   char buf[32];
-  for (int digits = 1; digits <= 17; ++digits) {
-    std::snprintf(buf, sizeof buf, "%.*g", digits, x);
-    if (std::strtod(buf, nullptr) == x) break;
-  }
-  return buf;
+  const auto r = std::to_chars(buf, buf + sizeof buf, x);
+  return std::string(buf, r.ptr);
 }
 
 struct ParamRange {

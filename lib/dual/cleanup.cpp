@@ -196,7 +196,10 @@ Json CleanupStats::to_json() const {
   return j;
 }
 
-CleanupStats cleanup_dual(DualDraft& d) {
+// Flattened: the phases above are one kernel over the loops and the union-find;
+// compiled as one function they take ~2% fewer instructions (callgrind) than
+// as calls.
+[[gnu::flatten]] CleanupStats cleanup_dual(DualDraft& d) {
   const auto t0 = Clock::now();
   CleanupStats st;
   PolyMesh& pm = d.mesh;

@@ -102,7 +102,7 @@ constexpr double kDetUnderflow = 1e-250, kNumUnderflow = 1e-240;
 struct CircumFilter {
   double val[4], bound[4];  // the numerators in doubles and their error bounds
   int range[4];             // 1 where the magnitudes rule out under/overflow
-  double D = 0, PD = 0, N_star = 0;  // det[u, v, w], its permanent, N* (L9c)
+  double D, PD, N_star;  // det[u, v, w], its permanent, N* (L9c)
   Point3 center;
 };
 
@@ -162,15 +162,18 @@ struct CircumFilter {
 //   |c~_k - c_k| <= (e_n + (N* + e_n) e_D / Dl) / (2 |D~|) + 1.01 eps (|q~_k| + |c~_k|),
 // |q~_k| <= 1.01 N* / (2 |D~|); doubled for the rounding of the bound itself.
 // Magnitudes are kept in (kCentreMagMin, kCentreMagMax), and Dl above half
-// of |D~| (near-flat tets get no bound).
-inline double centre_error(const CircumFilter& f) {
-  const double eD = 9.0 * kEps * f.PD + kDetUnderflow, aD = std::fabs(f.D), Dl = aD - eD;
-  if (!(f.PD > kCentreMagMin && f.PD < kCentreMagMax && f.N_star < kCentreMagMax && Dl > 0.5 * aD))
+// of |D~| (near-flat tets get no bound). Out of line, on scalars: inlined
+// into the filter it cost ~20 more instructions per tet (callgrind), the
+// filter's temporaries then being spilled around it.
+[[gnu::noinline]] double centre_error(double D, double PD, double N_star, Point3 center) {
+  const double eD = 9.0 * kEps * PD + kDetUnderflow, aD = std::fabs(D), Dl = aD - eD;
+  if (!(PD > kCentreMagMin && PD < kCentreMagMax && N_star < kCentreMagMax && Dl > 0.5 * aD))
     return std::numeric_limits<double>::infinity();
-  const double inv = 1.0 / (2.0 * aD), en = 13.0 * kEps * f.N_star + kNumUnderflow;
-  const double cmax = std::max(std::max(std::fabs(f.center.x), std::fabs(f.center.y)), std::fabs(f.center.z));
-  return 2.0 * ((en + (f.N_star + en) * (eD / Dl)) * inv + 1.01 * kEps * (1.01 * f.N_star * inv + cmax));
+  const double inv = 1.0 / (2.0 * aD), en = 13.0 * kEps * N_star + kNumUnderflow;
+  const double cmax = std::max(std::max(std::fabs(center.x), std::fabs(center.y)), std::fabs(center.z));
+  return 2.0 * ((en + (N_star + en) * (eD / Dl)) * inv + 1.01 * kEps * (1.01 * N_star * inv + cmax));
 }
+double centre_error(const CircumFilter& f) { return centre_error(f.D, f.PD, f.N_star, f.center); }
 
 [[gnu::always_inline]] inline bool decided(const CircumFilter& f, int i) {
   return ((int(f.val[i] > f.bound[i]) | int(f.val[i] < -f.bound[i])) & f.range[i]) != 0;
