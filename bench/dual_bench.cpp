@@ -132,7 +132,8 @@ void classify_dual_counters(benchmark::State& st, const TetSoup& soup) {
     bytes_per_tet = std::max(bytes_per_tet, double(status_kb("VmHWM:") - base) * 1024.0 / double(soup.tets.size()));
     cells = pm.num_cells();
     const double total = cs.seconds_validate + cs.seconds_order + cs.seconds_topology + cs.seconds_classification +
-                         ds.seconds_points + ds.seconds_sides + ds.seconds_faces + ds.seconds_cleanup + ds.seconds_cells;
+                         ds.seconds_points + ds.seconds_sides + ds.seconds_faces + ds.seconds_hints + ds.seconds_cleanup +
+                         ds.seconds_cells;
     if (total < best_total) { best_total = total; best_c = cs; best_d = ds; }
     st.ResumeTiming();
   }
@@ -156,7 +157,8 @@ void classify_dual_counters(benchmark::State& st, const TetSoup& soup) {
   st.counters["s5_points"] = us(best_d.seconds_points);
   st.counters["s6_sides"] = us(best_d.seconds_sides);
   st.counters["s7_faces"] = us(best_d.seconds_faces);
-  st.counters["s8_cleanup"] = us(best_d.seconds_cleanup + best_d.seconds_cells);
+  // The cleanup column: its hints (found by the draft), the cleanup itself and the cells.
+  st.counters["s8_cleanup"] = us(best_d.seconds_hints + best_d.seconds_cleanup + best_d.seconds_cells);
 }
 
 void BM_ClassifyDual(benchmark::State& st, Domain d, std::size_t n) { classify_dual_counters(st, soup_for(d, n)); }

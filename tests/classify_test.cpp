@@ -2,6 +2,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <stdexcept>
+
 #include "classify/classify.h"
 #include "core/error.h"
 #include "generate/random_mesh.h"
@@ -39,7 +42,7 @@ TEST(Classify, BoxByInference) {
 
 TEST(Classify, FeatureAngleControlsSplitting) {
   ClassifyParams p;
-  p.feature_angle_deg = 120;  // box edges (90 degrees) no longer split faces
+  p.feature_angle_deg = 120;  // box edges (90 degrees) are within it: one face
   ClassifiedTetMesh m = classify(kuhn_lattice(2, 2, 2), p);
   EXPECT_EQ(m.model().count(2), 1u);
   EXPECT_EQ(m.model().count(1), 0u);
@@ -107,4 +110,47 @@ TEST(Classify, TagsNearInt32MaxDoNotOverflow) {
   for (auto& t : s.triangles) t.tag = std::numeric_limits<std::int32_t>::max();  // one tag for all six sides
   ClassifiedTetMesh m = classify(s);
   EXPECT_EQ(m.model().count(2), 1u);  // given one tag: no geometric splitting
+}
+
+// validate(): a value outside (0, 180] throws UsageError naming the field, its
+// unit and the range; classify() refuses such params before reading the soup.
+TEST(Classify, ParamsValidateNamesFieldUnitAndRange) {
+  for (double bad : {0.0, -1.0, 180.5, std::nan("")}) {
+    ClassifyParams p;
+    p.feature_angle_deg = bad;
+    try {
+      p.validate();
+      FAIL() << "feature_angle_deg = " << bad << " accepted";
+    } catch (const UsageError& e) {
+      EXPECT_THAT(e.what(), HasSubstr("feature_angle_deg"));
+      EXPECT_THAT(e.what(), HasSubstr("degrees"));
+      EXPECT_THAT(e.what(), HasSubstr("(0, 180]"));
+    }
+    EXPECT_THROW(classify(kuhn_lattice(1, 1, 1), p), UsageError);
+  }
+  for (double good : {1e-9, 30.0, ClassifyParams::kMaxFeatureAngleDeg}) {
+    ClassifyParams p;
+    p.feature_angle_deg = good;
+    EXPECT_NO_THROW(p.validate()) << good;
+  }
+  ClassifyParams p;
+  p.feature_angle_deg = 42.5;
+  EXPECT_EQ(p.to_json().dump(0), "{\"feature_angle_deg\":42.5}");
+}
+
+// The rule that names a model face from its regions (one place: lib/mesh).
+TEST(Classify, FaceKindFromRegions) {
+  ClassifiedTetMesh m = classify(kuhn_lattice(4, 2, 2, 1, 1, 1, 2));
+  int external = 0, interface = 0;
+  for (const ModelEntity& f : m.model().entities[2]) {
+    const FaceKind k = m.model().face_kind(f.tag);
+    EXPECT_EQ(k, face_kind(f));
+    external += k == FaceKind::External;
+    interface += k == FaceKind::Interface;
+    EXPECT_EQ(k == FaceKind::External, f.regions.size() == 1);
+  }
+  EXPECT_EQ(interface, 1);
+  EXPECT_EQ(external, 10);
+  EXPECT_EQ(face_kind(ModelEntity{2, 5, {1}, {1, 1}}), FaceKind::Fracture);
+  EXPECT_THROW(m.model().face_kind(123456), std::out_of_range);
 }

@@ -4,10 +4,13 @@
 
 #include <CGAL/Gmpq.h>
 
+#include <cmath>
+#include <iostream>
 #include <map>
 #include <set>
 
 #include "classify/classify.h"
+#include "core/error.h"
 #include "dual/build_dual.h"
 #include "generate/random_mesh.h"
 #include "mesh/validate.h"
@@ -89,10 +92,23 @@ std::size_t count_sides(const ClassifiedTetMesh& m) {
   return total;
 }
 
-void check_invariants(const TetSoup& soup, bool planar, const std::string& what) {
+// What a checked dual contained (for tests over many meshes: did they
+// exercise what they are meant to?).
+struct DualCounts {
+  std::size_t interface_faces = 0, fracture_faces = 0, merged_points = 0;
+};
+
+DualCounts check_invariants(const TetSoup& soup, bool planar, const std::string& what) {
   SCOPED_TRACE(what);
   ClassifiedTetMesh m = classify(soup);
-  PolyMesh pm = build_dual(m);
+  DualStats st;
+  PolyMesh pm = build_dual(m, {}, &st);
+  DualCounts counts;
+  counts.merged_points = st.merged_points;
+  for (FaceKind k : pm.face_kind) {
+    counts.interface_faces += k == FaceKind::Interface;
+    counts.fracture_faces += k == FaceKind::Fracture;
+  }
   ValidationReport r = validate(pm, &m);
   EXPECT_EQ(r.face_errors, 0u);
   EXPECT_EQ(r.closed_cells, r.cells);
@@ -133,9 +149,10 @@ void check_invariants(const TetSoup& soup, bool planar, const std::string& what)
   if (planar) {
     auto dv = exact_material_volumes(pm);
     auto pv = exact_primal_volumes(m);
-    ASSERT_EQ(dv.size(), pv.size());
+    EXPECT_EQ(dv.size(), pv.size());
     for (auto& [tag, q] : pv) EXPECT_TRUE(dv[tag] == q) << "material " << tag << ": dual " << CGAL::to_double(dv[tag]) / 6 << " primal " << CGAL::to_double(q) / 6;
   }
+  return counts;
 }
 
 // Cells with 8 points and 6 quadrilateral faces (cubes and boxes).
@@ -202,26 +219,43 @@ TEST(Dual, KuhnLatticeTwoMaterials) {
 }
 
 TEST(Dual, RandomMeshInvariants) {
-  // 1000+ random classified meshes: one region (planar faces: exact volume
+  // 1040 random classified meshes: one region (planar faces: exact volume
   // identity), two regions (jagged interface), with fracture, lattice points.
-  int n = 0;
+  // Each family must exercise what it is there for: interface faces in the
+  // two-region meshes, fracture faces (capped on both sides) in the fractured
+  // ones, exact merges of cospherical centres in the lattice ones.
+  std::size_t meshes[4] = {0, 0, 0, 0}, interface_meshes = 0, fracture_meshes = 0, merging_meshes = 0;
   for (std::uint64_t seed = 1; seed <= 260; ++seed) {
     RandomMeshParams p;
     p.seed = seed;
     p.num_points = 20 + int(seed % 30);
     check_invariants(random_classified_mesh(p), true, "single seed " + std::to_string(seed));
+    ++meshes[0];
     p.regions = 2;
-    check_invariants(random_classified_mesh(p), false, "two regions seed " + std::to_string(seed));
+    interface_meshes += check_invariants(random_classified_mesh(p), false, "two regions seed " + std::to_string(seed))
+                            .interface_faces > 0;
+    ++meshes[1];
     p.fracture = true;
-    check_invariants(random_classified_mesh(p), false, "fracture seed " + std::to_string(seed));
+    fracture_meshes += check_invariants(random_classified_mesh(p), false, "fracture seed " + std::to_string(seed))
+                           .fracture_faces > 0;
+    ++meshes[2];
     p.regions = 1;
     p.fracture = false;
     p.lattice_points = true;
-    check_invariants(random_classified_mesh(p), true, "lattice seed " + std::to_string(seed));
-    n += 4;
+    merging_meshes += check_invariants(random_classified_mesh(p), true, "lattice seed " + std::to_string(seed))
+                          .merged_points > 0;
+    ++meshes[3];
     if (HasFailure()) break;
   }
-  EXPECT_GE(n, 1000);
+  for (std::size_t n : meshes) EXPECT_EQ(n, 260u);
+  // Every two-region and fractured mesh has its interface/fracture faces;
+  // the lattice points make cospherical neighbours in most lattice meshes
+  // (177 of the 260 seeds).
+  EXPECT_EQ(interface_meshes, 260u);
+  EXPECT_EQ(fracture_meshes, 260u);
+  EXPECT_GE(merging_meshes, 150u);
+  std::cout << "meshes with interface faces " << interface_meshes << ", fracture faces " << fracture_meshes
+            << ", exact merges " << merging_meshes << " (of 260 each)\n";
 }
 
 TEST(Dual, Deterministic) {
@@ -235,4 +269,177 @@ TEST(Dual, Deterministic) {
   EXPECT_EQ(a.points, b.points);
   EXPECT_EQ(a.face_points, b.face_points);
   EXPECT_EQ(a.cell_faces, b.cell_faces);
+}
+
+// ---- the stages on their own: build_dual_draft, cleanup_dual, assemble_cells
+
+namespace {
+// Every face of pm has >= 3 distinct points, all in range; every point is used.
+void expect_compact(const PolyMesh& pm) {
+  std::vector<char> used(pm.num_points(), 0);
+  for (std::size_t f = 0; f < pm.num_faces(); ++f) {
+    std::set<std::uint32_t> distinct;
+    for (PointId p : pm.face(FaceId(f))) {
+      ASSERT_LT(p.idx, pm.num_points());
+      distinct.insert(p.idx);
+      used[p.idx] = 1;
+    }
+    EXPECT_GE(distinct.size(), 3u) << "face " << f;
+  }
+  EXPECT_EQ(std::count(used.begin(), used.end(), 0), 0);
+}
+}  // namespace
+
+// The Kuhn lattice 4x4x4: the six tets of each of the 64 cubes share the
+// cube's circumsphere (centre on their common diagonal: well-centred), so the
+// draft pairs them and the cleanup merges 5 centres per cube; the two boundary
+// triangles of each of the 96 boundary squares are cocircular (centre on the
+// diagonal): one merge each. The faces of the diagonals degenerate and are
+// dropped; what is left are the boxes' faces: one quad per axis-parallel
+// lattice edge (3 x 4 x 5 x 5 = 300) and one cap per boundary vertex and
+// lattice side it lies on (6 x 25 = 150).
+TEST(DualStages, CleanupMergesTheDraftsExactPairs) {
+  ClassifiedTetMesh m = classify(kuhn_lattice(4, 4, 4));
+  DualStats ds;
+  DualDraft draft = build_dual_draft(m, {}, &ds);
+  EXPECT_EQ(draft.num_cells, 125u);
+  EXPECT_TRUE(draft.mesh.cell_faces.empty());
+  EXPECT_EQ(draft.mesh.cell_material.size(), 125u);
+  EXPECT_FALSE(draft.exact_pairs.empty());
+  EXPECT_TRUE(std::is_sorted(draft.scan_faces.begin(), draft.scan_faces.end()));
+  EXPECT_GT(draft.collapse_length, 0.0);
+  const std::size_t raw_points = draft.mesh.num_points(), draft_faces = draft.mesh.num_faces();
+  const CleanupStats cs = cleanup_dual(draft);
+  EXPECT_EQ(cs.merged_points, 64u * 5u + 96u);
+  EXPECT_EQ(cs.collapsed_points, 0u);
+  EXPECT_EQ(draft.mesh.num_points(), raw_points - cs.merged_points);
+  EXPECT_EQ(cs.dropped_points, cs.merged_points);  // each merged point is no face's any more
+  EXPECT_TRUE(draft.exact_pairs.empty() && draft.short_pairs.empty() && draft.scan_faces.empty());
+  expect_compact(draft.mesh);
+  // The composition gives the same mesh as the stages.
+  PolyMesh staged = assemble_cells(std::move(draft));
+  PolyMesh composed = build_dual(m);
+  EXPECT_EQ(staged.points, composed.points);
+  EXPECT_EQ(staged.face_points, composed.face_points);
+  EXPECT_EQ(staged.face_offsets, composed.face_offsets);
+  EXPECT_EQ(staged.cell_faces, composed.cell_faces);
+  EXPECT_EQ(staged.cell_offsets, composed.cell_offsets);
+  EXPECT_EQ(count_boxes(staged), 125u);
+  EXPECT_EQ(staged.num_faces(), 450u);
+  EXPECT_EQ(staged.num_faces(), draft_faces - cs.dropped_faces);
+}
+
+// The collapse length is the draft's: the same draft with collapse_length 0
+// collapses nothing (only the exact merge would run: none on a perturbed
+// lattice), with it the tet centres of each cube collapse.
+TEST(DualStages, CleanupCollapsesWithTheDraftsLength) {
+  TetSoup s = kuhn_lattice(3, 3, 3);
+  std::uint64_t state = 99;
+  for (Point3& p : s.points)
+    if (p.x > 0 && p.x < 3 && p.y > 0 && p.y < 3 && p.z > 0 && p.z < 3)
+      for (int d = 0; d < 3; ++d) {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        p[d] += (double(state >> 11) * 0x1p-53 - 0.5) * 2e-7;
+      }
+  ClassifiedTetMesh m = classify(s);
+  DualDraft with = build_dual_draft(m), without = build_dual_draft(m);
+  EXPECT_FALSE(with.short_pairs.empty());
+  without.collapse_length = 0;
+  const CleanupStats a = cleanup_dual(with), b = cleanup_dual(without);
+  EXPECT_GT(a.collapsed_points, 0u);
+  EXPECT_EQ(b.collapsed_points, 0u);
+  EXPECT_LT(with.mesh.num_points(), without.mesh.num_points());
+  expect_compact(with.mesh);
+  expect_compact(without.mesh);
+  // Without the cleanup the draft has no hints: cleanup_dual only compacts.
+  DualParams off;
+  off.cleanup = false;
+  DualDraft raw = build_dual_draft(m, off);
+  EXPECT_TRUE(raw.exact_pairs.empty() && raw.short_pairs.empty() && raw.scan_faces.empty());
+  EXPECT_EQ(raw.collapse_length, 0.0);
+  const CleanupStats c = cleanup_dual(raw);
+  EXPECT_EQ(c.merged_points + c.collapsed_points, 0u);
+}
+
+// A hand-made draft: two triangles (0 1 2) and (0 3 1) with an exact pair
+// (1, 3): the second degenerates to (0 1) and is dropped; points 3 (merged)
+// and 4 (never used) are dropped and the survivors keep their order. A pair
+// of different classifications (0, 2) is not merged, nor a short edge between
+// them; the short edge (1, 2) of equal classes collapses into 1.
+TEST(DualStages, CleanupOnAHandMadeDraft) {
+  DualDraft d;
+  const ModelRef in{3, 1}, on{2, 7};
+  d.mesh.add_point({0, 0, 0}, on);
+  d.mesh.add_point({1, 0, 0}, in);
+  d.mesh.add_point({0, 1, 0}, in);
+  d.mesh.add_point({1, 0, 0}, in);
+  d.mesh.add_point({5, 5, 5}, in);
+  d.mesh.add_point({0, 0, 1}, in);
+  const PointId f0[] = {PointId(0), PointId(1), PointId(2)}, f1[] = {PointId(0), PointId(3), PointId(1)},
+                f2[] = {PointId(0), PointId(2), PointId(5), PointId(1)};
+  d.mesh.add_face(f0, CellId(0), CellId::invalid(), FaceKind::External, 7);
+  d.mesh.add_face(f1, CellId(0), CellId::invalid(), FaceKind::External, 7);
+  d.mesh.add_face(f2, CellId(0), CellId::invalid(), FaceKind::External, 7);
+  d.num_cells = 1;
+  d.mesh.cell_material = {1};
+  d.mesh.cell_primal = {VertexId(0)};
+  d.exact_pairs = {{PointId(1), PointId(3)}, {PointId(0), PointId(2)}};
+  d.collapse_length = 2.0;  // every edge here is shorter
+  d.scan_faces = {2};
+  const CleanupStats st = cleanup_dual(d);
+  EXPECT_EQ(st.merged_points, 1u);
+  EXPECT_EQ(st.collapsed_points, 2u);  // 2 -> 1 and 5 -> 1 in face 2's loop; 0 is of another class
+  EXPECT_EQ(st.dropped_faces, 3u);     // (0 1 1), (0 1), (0 1 1 1): all under 3 distinct points
+  EXPECT_EQ(d.mesh.num_faces(), 0u);
+  EXPECT_EQ(st.dropped_points, 6u);
+  // Without the collapse only face 1 degenerates.
+  DualDraft e;
+  for (int i = 0; i < 6; ++i) e.mesh.add_point({double(i), 0, double(i % 2)}, i == 0 ? on : in);
+  e.mesh.add_face(f0, CellId(0), CellId::invalid(), FaceKind::External, 7);
+  e.mesh.add_face(f1, CellId(0), CellId::invalid(), FaceKind::Interface, 8);
+  e.mesh.add_face(f2, CellId(0), CellId::invalid(), FaceKind::Fracture, 9);
+  e.exact_pairs = {{PointId(1), PointId(3)}};
+  const CleanupStats st2 = cleanup_dual(e);
+  EXPECT_EQ(st2.merged_points, 1u);
+  EXPECT_EQ(st2.dropped_faces, 1u);
+  EXPECT_EQ(st2.dropped_points, 2u);  // 3 (merged into 1) and 4 (unused)
+  ASSERT_EQ(e.mesh.num_faces(), 2u);
+  EXPECT_EQ(e.mesh.face_tag, (std::vector<std::int32_t>{7, 9}));
+  EXPECT_EQ(e.mesh.face_kind[1], FaceKind::Fracture);
+  const auto loop = e.mesh.face(FaceId(1));
+  EXPECT_EQ(std::vector<PointId>(loop.begin(), loop.end()),
+            (std::vector<PointId>{PointId(0), PointId(2), PointId(3), PointId(1)}));  // 5 renumbered 3
+  EXPECT_EQ(e.mesh.num_points(), 4u);
+  expect_compact(e.mesh);
+}
+
+// validate(): a collapse tolerance outside [0, 0.5] throws UsageError naming
+// the field, its unit and the range; build_dual refuses such params.
+TEST(DualStages, ParamsValidateNamesFieldUnitAndRange) {
+  ClassifiedTetMesh m = classify(kuhn_lattice(1, 1, 1));
+  for (double bad : {-1e-9, 0.5000001, 3.0, std::nan("")}) {
+    DualParams p;
+    p.collapse_tolerance = bad;
+    try {
+      p.validate();
+      FAIL() << "collapse_tolerance = " << bad << " accepted";
+    } catch (const UsageError& e) {
+      EXPECT_NE(std::string(e.what()).find("collapse_tolerance"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("mean primal edge length"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("[0, 0.5]"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(build_dual(m, p), UsageError);
+  }
+  for (double good : {DualParams::kMinCollapseTolerance, 1e-3, DualParams::kMaxCollapseTolerance}) {
+    DualParams p;
+    p.collapse_tolerance = good;
+    EXPECT_NO_THROW(p.validate()) << good;
+  }
+  DualParams p;
+  p.cleanup = false;
+  p.collapse_tolerance = 0.25;
+  EXPECT_EQ(p.to_json().dump(0), "{\"cleanup\":false,\"collapse_tolerance\":0.25}");
+  CleanupStats cs;
+  cs.merged_points = 3;
+  EXPECT_NE(cs.to_json().dump(0).find("\"merged_points\":3"), std::string::npos);
 }

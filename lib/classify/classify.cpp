@@ -22,6 +22,7 @@
 #include "classify/union_find.h"
 #include "core/radix_sort.h"
 #include "core/error.h"
+#include "core/param_range.h"
 #include "predicates/predicates.h"
 
 namespace polydual {
@@ -48,9 +49,9 @@ struct Compacted {
   std::vector<std::uint32_t> input_tet;     // tet id -> soup tet index
 };
 
-Compacted validate_and_compact(const TetSoup& s, ClassifyStats& st) {
-  using Clock = std::chrono::steady_clock;
-  const auto t0 = Clock::now();
+// Indices in range, no repeated vertex in a tet, finite coordinates of the
+// used vertices; returns which vertices are used.
+std::vector<char> check_indices(const TetSoup& s) {
   const std::size_t nv = s.points.size();
   if (s.tets.empty()) throw InputError(s.source, "", "mesh has no tetrahedra");
   if (s.tet_region.size() != s.tets.size())
@@ -74,9 +75,12 @@ Compacted validate_and_compact(const TetSoup& s, ClassifyStats& st) {
   for (std::size_t v = 0; v < nv; ++v)
     if (used[v] && !is_finite(s.points[v]))
       throw InputError(s.source, "vertex " + std::to_string(v + 1), "coordinate is not finite");
-  st.seconds_validate = std::chrono::duration<double>(Clock::now() - t0).count();
-  const auto t1 = Clock::now();
-  // Spatial order: used vertices along the Morton curve, tets by smallest vertex.
+  return used;
+}
+
+// Spatial order: used vertices along the Morton curve, tets by smallest vertex.
+Compacted spatial_order(const TetSoup& s, std::vector<char> used) {
+  const std::size_t nv = s.points.size();
   Compacted c;
   std::vector<std::uint32_t> used_list;
   std::vector<Point3> used_points;
@@ -118,10 +122,12 @@ Compacted validate_and_compact(const TetSoup& s, ClassifyStats& st) {
     c.regions[k] = s.tet_region[t];
     c.input_tet[k] = std::uint32_t(t);
   }
-  st.seconds_order = std::chrono::duration<double>(Clock::now() - t1).count();
-  // EXACT: the orientation of every tet, checked in the new (cache-friendly)
-  // order; on a failure, the first failing tet in input order is reported.
-  const auto t2 = Clock::now();
+  return c;
+}
+
+// EXACT: the orientation of every tet, checked in the new (cache-friendly)
+// order; on a failure, the first failing tet in input order is reported.
+void check_orientations(const TetSoup& s, const Compacted& c) {
   auto orientation_error = [&](std::size_t t) {
     const auto& tv = s.tets[t];
     const Sign o = orient3d(s.points[tv[0]], s.points[tv[1]], s.points[tv[2]], s.points[tv[3]]);
@@ -136,7 +142,20 @@ Compacted validate_and_compact(const TetSoup& s, ClassifyStats& st) {
     if (orient3d(c.points[tv[0].idx], c.points[tv[1].idx], c.points[tv[2].idx], c.points[tv[3].idx]) !=
         Sign::Positive)
       for (std::size_t t = 0; t < s.tets.size(); ++t) orientation_error(t);
-  st.seconds_validate += std::chrono::duration<double>(Clock::now() - t2).count();
+}
+
+Compacted validate_and_compact(const TetSoup& s, ClassifyStats& st) {
+  using Clock = std::chrono::steady_clock;
+  auto since = [](Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); };
+  auto t0 = Clock::now();
+  std::vector<char> used = check_indices(s);
+  st.seconds_validate = since(t0);
+  t0 = Clock::now();
+  Compacted c = spatial_order(s, std::move(used));
+  st.seconds_order = since(t0);
+  t0 = Clock::now();
+  check_orientations(s, c);
+  st.seconds_validate += since(t0);
   return c;
 }
 
@@ -162,15 +181,17 @@ std::array<EdgeId, 3> triangle_edges(const ClassifiedTetMesh& m, TriId f) {
   return out;
 }
 
+inline double degrees(double radians) { return radians * 180.0 / M_PI; }
+
 // Bend angle (degrees) between two triangles sharing edge (a,b) with third
 // vertices c1, c2: 0 when they continue each other in a plane. Inexact (double).
 double bend_angle(const Point3& a, const Point3& b, const Point3& c1, const Point3& c2) {
   Vec3 e = b - a;
   Vec3 n1 = cross(e, c1 - a), n2 = cross(c2 - a, e);
   double d = norm(n1) * norm(n2);
-  if (d == 0) return 180.0;
+  if (d == 0) return 180.0;  // a degenerate triangle: a full bend (split there)
   double cs = std::clamp(dot(n1, n2) / d, -1.0, 1.0);
-  return std::acos(cs) * 180.0 / M_PI;
+  return degrees(std::acos(cs));
 }
 
 VertexId third_vertex(const ClassifiedTetMesh& m, TriId f, EdgeId e) {
@@ -179,12 +200,11 @@ VertexId third_vertex(const ClassifiedTetMesh& m, TriId f, EdgeId e) {
   return VertexId::invalid();
 }
 
-// Assign tags to components: the first component carrying a given tag keeps it,
-// every other component gets a fresh tag above all given ones, in component order.
-std::vector<std::int32_t> assign_tags(const std::vector<std::int32_t>& given_tag_of_component,
-                                      std::int32_t /*max_given*/) {
-  // Fresh tags are the smallest positive integers no component was given, so
-  // a given tag of INT32_MAX cannot make them overflow.
+// Assign tags to components, in component order: the first component
+// carrying a given tag keeps it; every other component gets the smallest
+// positive integer that no component was given and none has taken yet (so a
+// given tag of INT32_MAX cannot make fresh tags overflow).
+std::vector<std::int32_t> assign_tags(const std::vector<std::int32_t>& given_tag_of_component) {
   std::set<std::int32_t> given(given_tag_of_component.begin(), given_tag_of_component.end());
   std::set<std::int32_t> used;
   std::vector<std::int32_t> out(given_tag_of_component.size());
@@ -201,141 +221,186 @@ std::vector<std::int32_t> assign_tags(const std::vector<std::int32_t>& given_tag
   return out;
 }
 
-}  // namespace
+// The model-face grouping key of a model-face triangle.
+struct FaceKey {
+  std::int32_t given, r0, r1;  // r1 = kNoTag on the external boundary
+  auto operator<=>(const FaceKey&) const = default;
+};
 
-ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params, ClassifyStats* stats) {
-  if (!(params.feature_angle_deg > 0 && params.feature_angle_deg <= 180))
-    throw UsageError("--feature-angle must be in (0, 180] degrees");
-  ClassifyStats local;
-  ClassifyStats& st = stats ? *stats : local;
-  using Clock = std::chrono::steady_clock;
-  auto since = [](Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); };
-  auto t0 = Clock::now();
-  Compacted c = validate_and_compact(soup, st);
-  t0 = Clock::now();
-  ClassifiedTetMesh m = TetMeshBuilder::build_topology(soup.source, std::move(c.points), std::move(c.tets),
-                                                       std::move(c.regions), std::move(c.input_vertex),
-                                                       std::move(c.input_tet));
-  st.seconds_topology = since(t0);
-  t0 = Clock::now();
-  const std::size_t nf = m.num_triangles(), ne = m.num_edges(), nv = m.num_vertices();
-  auto remap = [&](std::uint32_t v, const char* what, std::size_t i) {
-    if (v >= c.remap.size() || c.remap[v] == std::uint32_t(-1))
-      throw InputError(soup.source, std::string(what) + " " + std::to_string(i + 1),
-                       "vertex index " + std::to_string(v + 1) + " is out of range or used by no tet");
-    return VertexId(c.remap[v]);
-  };
+// A candidate model edge: an edge with a model-face triangle or a given tag.
+struct Cand {
+  std::uint32_t e, t0, t1;  // the edge; its model-face triangles are et[t0 .. t1)
+  std::int32_t given;       // given model-edge tag or kNoTag
+};
 
-  // Everything below works on sparse lists: the model-face triangles (a few
-  // per cent of all triangles) and the candidate model edges (edges with a
-  // model-face triangle or a given tag), in increasing id order, so the
-  // components and tags come out in the same order as a pass over all ids.
+// The inference of the model's faces, edges and vertices (SPEC §3) on a mesh
+// with its topology built, one phase per member function, in this order.
+// Everything works on sparse lists: the model-face triangles (a few per cent
+// of all triangles) and the candidate model edges, in increasing id order, so
+// the components and tags come out in the same order as a pass over all ids.
+class ModelInference {
+ public:
+  ModelInference(const TetSoup& soup, const ClassifyParams& params, const std::vector<std::uint32_t>& remap,
+                 ClassifiedTetMesh& m)
+      : soup_(soup), params_(params), remap_(remap), m_(m), tri_face_(TetMeshBuilder::triangle_face(m)) {}
 
-  // ---- given triangle tags (dense, looked up by triangle; none: no array)
-  std::vector<std::int32_t> tri_given;
-  auto given_of = [&](std::size_t f) { return tri_given.empty() ? kNoTag : tri_given[f]; };
-  std::int32_t max_face_tag = 0;
-  if (!soup.triangles.empty()) tri_given.assign(nf, kNoTag);
-  for (std::size_t i = 0; i < soup.triangles.size(); ++i) {
-    const auto& t = soup.triangles[i];
-    VertexId a = remap(t.v[0], "triangle", i), b = remap(t.v[1], "triangle", i),
-             cc = remap(t.v[2], "triangle", i);
-    if (a == b || b == cc || a == cc)
-      throw InputError(soup.source, "triangle " + std::to_string(i + 1),
-                       "triangle " + vlist({t.v[0], t.v[1], t.v[2]}) + " repeats a vertex");
-    TriId f = find_triangle(m, a, b, cc);
-    if (!f.valid())
-      throw InputError(soup.source, "triangle " + std::to_string(i + 1),
-                       "triangle " + vlist({t.v[0], t.v[1], t.v[2]}) + " is not a face of any tet");
-    if (tri_given[f.idx] != kNoTag && tri_given[f.idx] != t.tag)
-      throw InputError(soup.source, "triangle " + std::to_string(i + 1),
-                       "triangle classified on two model faces (" + std::to_string(tri_given[f.idx]) +
-                           " and " + std::to_string(t.tag) + ")");
-    tri_given[f.idx] = t.tag;
-    max_face_tag = std::max(max_face_tag, t.tag);
+  void run() {
+    read_given_triangles();
+    find_model_face_triangles();
+    find_candidate_edges();
+    group_model_faces();
+    find_model_edges();
+    find_model_vertices();
+    classify_edges();
+    classify_vertices();
+    build_model_topology();
   }
 
-  // ---- model-face triangles (mf[r]: the triangle of rank r) and their grouping key
-  struct FaceKey {
-    std::int32_t given, r0, r1;  // r1 = kNoTag on the external boundary
-    auto operator<=>(const FaceKey&) const = default;
-  };
-  std::vector<std::uint32_t> mf;
-  std::vector<FaceKey> key;  // by rank
-  for (std::size_t f = 0; f < nf; ++f) {
-    TetId t0 = m.triangle_tet(TriId(f), 0), t1 = m.triangle_tet(TriId(f), 1);
-    std::int32_t r0 = m.region(t0), r1 = t1.valid() ? m.region(t1) : kNoTag;
+ private:
+  VertexId remap(std::uint32_t v, const char* what, std::size_t i) const {
+    if (v >= remap_.size() || remap_[v] == std::uint32_t(-1))
+      throw InputError(soup_.source, std::string(what) + " " + std::to_string(i + 1),
+                       "vertex index " + std::to_string(v + 1) + " is out of range or used by no tet");
+    return VertexId(remap_[v]);
+  }
+  std::int32_t given_of(std::size_t f) const { return tri_given_.empty() ? kNoTag : tri_given_[f]; }
+  // Distinct model-face tags around candidate edge ci (sorted).
+  std::vector<std::int32_t> edge_faces(std::size_t ci) const {
+    std::vector<std::int32_t> tags;
+    for (std::uint32_t k = cand_[ci].t0; k < cand_[ci].t1; ++k) tags.push_back(tri_face_[mf_[et_[k].r]]);
+    std::sort(tags.begin(), tags.end());
+    tags.erase(std::unique(tags.begin(), tags.end()), tags.end());
+    return tags;
+  }
+  // The model edges at vertex v (candidate indices, increasing).
+  std::span<const std::uint32_t> v_me(std::size_t v) const {
+    return {vme_.data() + vme_off_[v], vme_.data() + vme_off_[v + 1]};
+  }
+  auto edge_key(std::uint32_t ci) const { return std::make_pair(cand_[ci].given, edge_faces(ci)); }
+
+  void read_given_triangles();
+  void find_model_face_triangles();
+  void find_candidate_edges();
+  void group_model_faces();
+  void find_model_edges();
+  bool is_model_vertex(std::size_t v) const;
+  void find_model_vertices();
+  void classify_edges();
+  void classify_vertices();
+  void build_model_topology();
+
+  const TetSoup& soup_;
+  const ClassifyParams& params_;
+  const std::vector<std::uint32_t>& remap_;  // soup vertex index -> vertex id (or -1)
+  ClassifiedTetMesh& m_;
+  std::vector<std::int32_t>& tri_face_;      // the mesh's model-face tag per triangle
+  std::vector<std::int32_t> tri_given_;      // given triangle tags (dense; empty when none given)
+  std::vector<std::uint32_t> mf_;            // the model-face triangle of each rank
+  std::vector<FaceKey> key_;                 // by rank
+  struct EdgeTri { std::uint32_t e, r; };
+  std::vector<EdgeTri> et_;                  // (edge, rank) incidences sorted by edge
+  std::vector<Cand> cand_;
+  std::vector<char> is_me_;                  // per candidate: a model edge
+  std::vector<std::uint32_t> vme_off_, vme_; // vertex -> model edges (CSR of candidates)
+  std::vector<std::int32_t> corner_given_;   // per vertex: given model-vertex tag or kNoTag
+  std::vector<char> is_mv_;                  // per vertex: a model vertex
+  std::vector<std::int32_t> v_face_;         // per vertex: a model face it is on, or kNoTag
+  std::vector<char> v_multi_face_;           // per vertex: on two model faces or more
+  std::vector<std::int32_t> edge_tag_, ecomp_;  // model-edge tags, by component of each candidate
+};
+
+// Given triangle tags, looked up by triangle (none given: no array).
+void ModelInference::read_given_triangles() {
+  if (!soup_.triangles.empty()) tri_given_.assign(m_.num_triangles(), kNoTag);
+  for (std::size_t i = 0; i < soup_.triangles.size(); ++i) {
+    const auto& t = soup_.triangles[i];
+    VertexId a = remap(t.v[0], "triangle", i), b = remap(t.v[1], "triangle", i), c = remap(t.v[2], "triangle", i);
+    if (a == b || b == c || a == c)
+      throw InputError(soup_.source, "triangle " + std::to_string(i + 1),
+                       "triangle " + vlist({t.v[0], t.v[1], t.v[2]}) + " repeats a vertex");
+    TriId f = find_triangle(m_, a, b, c);
+    if (!f.valid())
+      throw InputError(soup_.source, "triangle " + std::to_string(i + 1),
+                       "triangle " + vlist({t.v[0], t.v[1], t.v[2]}) + " is not a face of any tet");
+    if (tri_given_[f.idx] != kNoTag && tri_given_[f.idx] != t.tag)
+      throw InputError(soup_.source, "triangle " + std::to_string(i + 1),
+                       "triangle classified on two model faces (" + std::to_string(tri_given_[f.idx]) + " and " +
+                           std::to_string(t.tag) + ")");
+    tri_given_[f.idx] = t.tag;
+  }
+}
+
+// Model-face triangles: on the external boundary, between two regions, or
+// given a tag; each with its grouping key.
+void ModelInference::find_model_face_triangles() {
+  for (std::size_t f = 0; f < m_.num_triangles(); ++f) {
+    TetId t0 = m_.triangle_tet(TriId(f), 0), t1 = m_.triangle_tet(TriId(f), 1);
+    std::int32_t r0 = m_.region(t0), r1 = t1.valid() ? m_.region(t1) : kNoTag;
     bool topo = !t1.valid() || r0 != r1;
     const std::int32_t given = given_of(f);
     if (!topo && given == kNoTag) continue;
-    if (topo && soup.full_classification && given == kNoTag) {
-      const auto& v = m.triangle(TriId(f));
-      throw InputError(soup.source, "triangle " + vlist({m.input_vertex(v[0]), m.input_vertex(v[1]), m.input_vertex(v[2])}),
+    if (topo && soup_.full_classification && given == kNoTag) {
+      const auto& v = m_.triangle(TriId(f));
+      throw InputError(soup_.source,
+                       "triangle " + vlist({m_.input_vertex(v[0]), m_.input_vertex(v[1]), m_.input_vertex(v[2])}),
                        std::string("contradiction: the triangle lies ") +
                            (t1.valid() ? "between regions " + std::to_string(r0) + " and " + std::to_string(r1)
                                        : "on the external boundary") +
                            " but the file classifies it on no model face");
     }
     if (r1 != kNoTag && r1 < r0) std::swap(r0, r1);
-    mf.push_back(std::uint32_t(f));
-    key.push_back({given, r0, r1});
+    mf_.push_back(std::uint32_t(f));
+    key_.push_back({given, r0, r1});
   }
-  const std::size_t nmf = mf.size();
+}
 
-  // ---- candidate edges: (edge, rank) incidences sorted by edge (ranks
-  // increasing within an edge), merged with the given edges.
-  struct EdgeTri { std::uint32_t e, r; };
-  std::vector<EdgeTri> et;
-  et.reserve(3 * nmf);
+// Candidate edges: (edge, rank) incidences sorted by edge (ranks increasing
+// within an edge), merged with the given edges.
+void ModelInference::find_candidate_edges() {
+  const std::size_t nmf = mf_.size();
+  et_.reserve(3 * nmf);
   for (std::size_t r = 0; r < nmf; ++r)
-    for (EdgeId e : triangle_edges(m, TriId(mf[r]))) et.push_back({e.idx, std::uint32_t(r)});
+    for (EdgeId e : triangle_edges(m_, TriId(mf_[r]))) et_.push_back({e.idx, std::uint32_t(r)});
   // Stable by edge: records were made in rank order, so ranks stay increasing.
-  radix_sort_by_key(et, [](const EdgeTri& x) { return x.e; }, std::bit_width(ne));
+  radix_sort_by_key(et_, [](const EdgeTri& x) { return x.e; }, std::bit_width(m_.num_edges()));
   std::vector<std::pair<std::uint32_t, std::int32_t>> given_edges;  // (edge, tag), the last given wins
-  std::int32_t max_edge_tag = 0;
-  for (std::size_t i = 0; i < soup.edges.size(); ++i) {
-    VertexId a = remap(soup.edges[i].v[0], "edge", i), b = remap(soup.edges[i].v[1], "edge", i);
-    if (a == b)
-      throw InputError(soup.source, "edge " + std::to_string(i + 1), "edge repeats a vertex");
-    EdgeId e = m.find_edge(a, b);
+  for (std::size_t i = 0; i < soup_.edges.size(); ++i) {
+    VertexId a = remap(soup_.edges[i].v[0], "edge", i), b = remap(soup_.edges[i].v[1], "edge", i);
+    if (a == b) throw InputError(soup_.source, "edge " + std::to_string(i + 1), "edge repeats a vertex");
+    EdgeId e = m_.find_edge(a, b);
     if (!e.valid())
-      throw InputError(soup.source, "edge " + std::to_string(i + 1),
-                       "edge " + vlist({soup.edges[i].v[0], soup.edges[i].v[1]}) + " is not an edge of any tet");
-    given_edges.emplace_back(e.idx, soup.edges[i].tag);
-    max_edge_tag = std::max(max_edge_tag, soup.edges[i].tag);
+      throw InputError(soup_.source, "edge " + std::to_string(i + 1),
+                       "edge " + vlist({soup_.edges[i].v[0], soup_.edges[i].v[1]}) + " is not an edge of any tet");
+    given_edges.emplace_back(e.idx, soup_.edges[i].tag);
   }
   std::stable_sort(given_edges.begin(), given_edges.end(),
                    [](const auto& x, const auto& y) { return x.first < y.first; });
-  struct Cand {
-    std::uint32_t e, t0, t1;  // the edge; its model-face triangles are et[t0 .. t1)
-    std::int32_t given;       // given model-edge tag or kNoTag
-  };
-  std::vector<Cand> cand;
-  {
-    std::size_t i = 0, g = 0;
-    while (i < et.size() || g < given_edges.size()) {
-      const std::uint32_t e = std::min(i < et.size() ? et[i].e : UINT32_MAX,
-                                       g < given_edges.size() ? given_edges[g].first : UINT32_MAX);
-      Cand c{e, std::uint32_t(i), std::uint32_t(i), kNoTag};
-      while (i < et.size() && et[i].e == e) ++i;
-      c.t1 = std::uint32_t(i);
-      while (g < given_edges.size() && given_edges[g].first == e) c.given = given_edges[g++].second;
-      cand.push_back(c);
-    }
+  std::size_t i = 0, g = 0;
+  while (i < et_.size() || g < given_edges.size()) {
+    const std::uint32_t e = std::min(i < et_.size() ? et_[i].e : UINT32_MAX,
+                                     g < given_edges.size() ? given_edges[g].first : UINT32_MAX);
+    Cand c{e, std::uint32_t(i), std::uint32_t(i), kNoTag};
+    while (i < et_.size() && et_[i].e == e) ++i;
+    c.t1 = std::uint32_t(i);
+    while (g < given_edges.size() && given_edges[g].first == e) c.given = given_edges[g++].second;
+    cand_.push_back(c);
   }
-  const std::size_t nc = cand.size();
+}
 
-  // ---- model faces: union across edges with exactly two model-face triangles
+// Model faces: model-face triangles united across edges with exactly two of
+// them, of equal keys, and (no tag given) a bend within the feature angle.
+void ModelInference::group_model_faces() {
+  const std::size_t nmf = mf_.size();
   UnionFind uf(nmf);
-  for (const Cand& c : cand) {
+  for (const Cand& c : cand_) {
     if (c.t1 - c.t0 != 2) continue;
-    const std::uint32_t f1 = et[c.t0].r, f2 = et[c.t0 + 1].r;
-    if (!(key[f1] == key[f2])) continue;
-    if (key[f1].given == kNoTag) {
-      const auto ev = m.edge(EdgeId(c.e));
-      double ang = bend_angle(m.point(ev[0]), m.point(ev[1]), m.point(third_vertex(m, TriId(mf[f1]), EdgeId(c.e))),
-                              m.point(third_vertex(m, TriId(mf[f2]), EdgeId(c.e))));
-      if (ang > params.feature_angle_deg) continue;
+    const std::uint32_t f1 = et_[c.t0].r, f2 = et_[c.t0 + 1].r;
+    if (!(key_[f1] == key_[f2])) continue;
+    if (key_[f1].given == kNoTag) {
+      const auto ev = m_.edge(EdgeId(c.e));
+      double ang = bend_angle(m_.point(ev[0]), m_.point(ev[1]), m_.point(third_vertex(m_, TriId(mf_[f1]), EdgeId(c.e))),
+                              m_.point(third_vertex(m_, TriId(mf_[f2]), EdgeId(c.e))));
+      if (ang > params_.feature_angle_deg) continue;
     }
     uf.unite(f1, f2);
   }
@@ -345,163 +410,168 @@ ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params, Cl
     const std::uint32_t root = uf.find(r);
     if (root_comp[root] == std::uint32_t(-1)) {
       root_comp[root] = std::uint32_t(comp_given.size());
-      comp_given.push_back(key[r].given);
+      comp_given.push_back(key_[r].given);
     }
     comp_of[r] = std::int32_t(root_comp[root]);
   }
-  std::vector<std::int32_t> face_tag = assign_tags(comp_given, max_face_tag);
-  auto& tri_face = TetMeshBuilder::triangle_face(m);
-  for (std::size_t r = 0; r < nmf; ++r) tri_face[mf[r]] = face_tag[comp_of[r]];
+  const std::vector<std::int32_t> face_tag = assign_tags(comp_given);
+  for (std::size_t r = 0; r < nmf; ++r) tri_face_[mf_[r]] = face_tag[comp_of[r]];
+}
 
-  // ---- model edges
-  std::vector<char> is_me(nc, 0);
-  // Distinct model-face tags around a candidate edge, computed on demand.
-  auto edge_faces = [&](std::size_t ci) {
-    std::vector<std::int32_t> tags;
-    for (std::uint32_t k = cand[ci].t0; k < cand[ci].t1; ++k) tags.push_back(tri_face[mf[et[k].r]]);
-    std::sort(tags.begin(), tags.end());
-    tags.erase(std::unique(tags.begin(), tags.end()), tags.end());
-    return tags;
-  };
+// Model edges: candidates where the model-face triangles do not form one
+// smooth sheet (not exactly two, or of two model faces), or given a tag; and
+// each vertex's model edges.
+void ModelInference::find_model_edges() {
+  const std::size_t nc = cand_.size(), nv = m_.num_vertices();
+  is_me_.assign(nc, 0);
   for (std::size_t ci = 0; ci < nc; ++ci) {
-    const std::uint32_t n = cand[ci].t1 - cand[ci].t0;
+    const std::uint32_t n = cand_[ci].t1 - cand_[ci].t0;
     const std::vector<std::int32_t> tags = n > 0 ? edge_faces(ci) : std::vector<std::int32_t>{};
     bool topo = n > 0 && (n != 2 || tags.size() >= 2);
-    if (topo && soup.full_classification && !soup.edges.empty() && cand[ci].given == kNoTag) {
-      const auto v = m.edge(EdgeId(cand[ci].e));
-      throw InputError(soup.source, "edge " + vlist({m.input_vertex(v[0]), m.input_vertex(v[1])}),
+    if (topo && soup_.full_classification && !soup_.edges.empty() && cand_[ci].given == kNoTag) {
+      const auto v = m_.edge(EdgeId(cand_[ci].e));
+      throw InputError(soup_.source, "edge " + vlist({m_.input_vertex(v[0]), m_.input_vertex(v[1])}),
                        "contradiction: model faces meet at this edge but the file classifies it on no model edge");
     }
-    is_me[ci] = topo || cand[ci].given != kNoTag;
+    is_me_[ci] = topo || cand_[ci].given != kNoTag;
   }
-  // Per-vertex incident model edges (CSR of candidate indices, increasing).
-  std::vector<std::uint32_t> vme_off(nv + 1, 0), vme;
+  vme_off_.assign(nv + 1, 0);
   for (std::size_t ci = 0; ci < nc; ++ci)
-    if (is_me[ci])
-      for (VertexId v : m.edge(EdgeId(cand[ci].e))) ++vme_off[v.idx + 1];
-  std::partial_sum(vme_off.begin(), vme_off.end(), vme_off.begin());
-  vme.resize(vme_off[nv]);
-  {
-    std::vector<std::uint32_t> fill(vme_off.begin(), vme_off.end() - 1);
-    for (std::size_t ci = 0; ci < nc; ++ci)
-      if (is_me[ci])
-        for (VertexId v : m.edge(EdgeId(cand[ci].e))) vme[fill[v.idx]++] = std::uint32_t(ci);
-  }
-  auto v_me = [&](std::size_t v) { return std::span<const std::uint32_t>(vme.data() + vme_off[v], vme.data() + vme_off[v + 1]); };
-  auto edge_key = [&](std::uint32_t ci) { return std::make_pair(cand[ci].given, edge_faces(ci)); };
+    if (is_me_[ci])
+      for (VertexId v : m_.edge(EdgeId(cand_[ci].e))) ++vme_off_[v.idx + 1];
+  std::partial_sum(vme_off_.begin(), vme_off_.end(), vme_off_.begin());
+  vme_.resize(vme_off_[nv]);
+  std::vector<std::uint32_t> fill(vme_off_.begin(), vme_off_.end() - 1);
+  for (std::size_t ci = 0; ci < nc; ++ci)
+    if (is_me_[ci])
+      for (VertexId v : m_.edge(EdgeId(cand_[ci].e))) vme_[fill[v.idx]++] = std::uint32_t(ci);
+}
 
-  // ---- model vertices
-  std::vector<std::int32_t> corner_given(nv, kNoTag);
-  std::int32_t max_vertex_tag = 0;
-  for (std::size_t i = 0; i < soup.corners.size(); ++i) {
-    VertexId v = remap(soup.corners[i].v, "corner", i);
-    corner_given[v.idx] = soup.corners[i].tag;
-    max_vertex_tag = std::max(max_vertex_tag, soup.corners[i].tag);
-  }
-  std::vector<char> is_mv(nv, 0);
+// A vertex is a model vertex if given one, where model faces touch without a
+// model edge, where model edges end, branch or change key, or at a sharp
+// corner between two model-edge segments (double geometry, like the bends).
+bool ModelInference::is_model_vertex(std::size_t v) const {
+  const auto es = v_me(v);
+  if (corner_given_[v] != kNoTag) return true;
+  if (es.empty()) return v_multi_face_[v] != 0;
+  if (es.size() != 2 || edge_key(es[0]) != edge_key(es[1])) return true;
+  if (cand_[es[0]].given != kNoTag) return false;
+  const auto e0 = m_.edge(EdgeId(cand_[es[0]].e)), e1 = m_.edge(EdgeId(cand_[es[1]].e));
+  VertexId a = e0[0] == VertexId(v) ? e0[1] : e0[0];
+  VertexId b = e1[0] == VertexId(v) ? e1[1] : e1[0];
+  Vec3 d1 = m_.point(VertexId(v)) - m_.point(a), d2 = m_.point(b) - m_.point(VertexId(v));
+  double cs = dot(d1, d2) / (norm(d1) * norm(d2));
+  return degrees(std::acos(std::clamp(cs, -1.0, 1.0))) > params_.feature_angle_deg;
+}
+
+void ModelInference::find_model_vertices() {
+  const std::size_t nv = m_.num_vertices();
+  corner_given_.assign(nv, kNoTag);
+  for (std::size_t i = 0; i < soup_.corners.size(); ++i)
+    corner_given_[remap(soup_.corners[i].v, "corner", i).idx] = soup_.corners[i].tag;
   // Distinct model faces at each vertex (for vertices where faces touch without an edge).
-  std::vector<std::int32_t> v_face(nv, kNoTag);
-  std::vector<char> v_multi_face(nv, 0);
-  for (std::size_t r = 0; r < nmf; ++r) {
-    const std::int32_t t = tri_face[mf[r]];
-    for (VertexId v : m.triangle(TriId(mf[r]))) {
-      if (v_face[v.idx] == kNoTag) v_face[v.idx] = t;
-      else if (v_face[v.idx] != t) v_multi_face[v.idx] = 1;
+  v_face_.assign(nv, kNoTag);
+  v_multi_face_.assign(nv, 0);
+  for (std::size_t r = 0; r < mf_.size(); ++r) {
+    const std::int32_t t = tri_face_[mf_[r]];
+    for (VertexId v : m_.triangle(TriId(mf_[r]))) {
+      if (v_face_[v.idx] == kNoTag) v_face_[v.idx] = t;
+      else if (v_face_[v.idx] != t) v_multi_face_[v.idx] = 1;
     }
   }
-  for (std::size_t v = 0; v < nv; ++v) {
-    const auto es = v_me(v);
-    bool mv = corner_given[v] != kNoTag;
-    if (es.empty()) {
-      mv = mv || v_multi_face[v];
-    } else if (es.size() != 2 || edge_key(es[0]) != edge_key(es[1])) {
-      mv = true;
-    } else if (cand[es[0]].given == kNoTag) {
-      // Sharp corner between two model-edge segments (double geometry).
-      const auto e0 = m.edge(EdgeId(cand[es[0]].e)), e1 = m.edge(EdgeId(cand[es[1]].e));
-      VertexId a = e0[0] == VertexId(v) ? e0[1] : e0[0];
-      VertexId b = e1[0] == VertexId(v) ? e1[1] : e1[0];
-      Vec3 d1 = m.point(VertexId(v)) - m.point(a), d2 = m.point(b) - m.point(VertexId(v));
-      double cs = dot(d1, d2) / (norm(d1) * norm(d2));
-      if (std::acos(std::clamp(cs, -1.0, 1.0)) * 180.0 / M_PI > params.feature_angle_deg) mv = true;
-    }
-    is_mv[v] = mv;
-  }
-  // Model edges: components of model-edge primal edges with equal keys, joined
-  // at vertices that are not model vertices.
+  is_mv_.assign(nv, 0);
+  for (std::size_t v = 0; v < nv; ++v) is_mv_[v] = is_model_vertex(v);
+}
+
+// Model edges: components of model-edge primal edges with equal keys, joined
+// at vertices that are not model vertices; then every edge's class.
+void ModelInference::classify_edges() {
+  const std::size_t nc = cand_.size(), nv = m_.num_vertices(), ne = m_.num_edges();
   UnionFind ue(nc);
   for (std::size_t v = 0; v < nv; ++v)
-    if (!is_mv[v] && v_me(v).size() == 2) ue.unite(v_me(v)[0], v_me(v)[1]);
-  std::vector<std::int32_t> ecomp(nc, -1), ecomp_given;
+    if (!is_mv_[v] && v_me(v).size() == 2) ue.unite(v_me(v)[0], v_me(v)[1]);
+  std::vector<std::int32_t> ecomp_given;
+  ecomp_.assign(nc, -1);
   std::vector<std::uint32_t> eroot(nc, std::uint32_t(-1));
   for (std::size_t ci = 0; ci < nc; ++ci) {
-    if (!is_me[ci]) continue;
+    if (!is_me_[ci]) continue;
     std::uint32_t r = ue.find(ci);
     if (eroot[r] == std::uint32_t(-1)) {
       eroot[r] = std::uint32_t(ecomp_given.size());
-      ecomp_given.push_back(cand[ci].given);
+      ecomp_given.push_back(cand_[ci].given);
     }
-    ecomp[ci] = std::int32_t(eroot[r]);
+    ecomp_[ci] = std::int32_t(eroot[r]);
   }
-  std::vector<std::int32_t> edge_tag = assign_tags(ecomp_given, max_edge_tag);
-  auto& edge_class = TetMeshBuilder::edge_class(m);
+  edge_tag_ = assign_tags(ecomp_given);
+  auto& edge_class = TetMeshBuilder::edge_class(m_);
   // An edge with no model-face triangle lies in one region: any of its tets.
-  for (std::size_t e = 0; e < ne; ++e) edge_class[e] = ModelRef{3, m.region(m.edge_tet(EdgeId(e)))};
+  for (std::size_t e = 0; e < ne; ++e) edge_class[e] = ModelRef{3, m_.region(m_.edge_tet(EdgeId(e)))};
   for (std::size_t ci = 0; ci < nc; ++ci) {
-    if (is_me[ci])
-      edge_class[cand[ci].e] = ModelRef{1, edge_tag[ecomp[ci]]};
-    else if (cand[ci].t1 > cand[ci].t0)
-      edge_class[cand[ci].e] = ModelRef{2, tri_face[mf[et[cand[ci].t0].r]]};
+    if (is_me_[ci])
+      edge_class[cand_[ci].e] = ModelRef{1, edge_tag_[ecomp_[ci]]};
+    else if (cand_[ci].t1 > cand_[ci].t0)
+      edge_class[cand_[ci].e] = ModelRef{2, tri_face_[mf_[et_[cand_[ci].t0].r]]};
   }
+}
+
+// Model vertices get tags in vertex order; every other vertex takes the class
+// of its model edge, else its model face, else its region.
+void ModelInference::classify_vertices() {
+  const std::size_t nv = m_.num_vertices();
   std::vector<std::int32_t> vgiven;
   std::vector<std::uint32_t> mv_list;
   for (std::size_t v = 0; v < nv; ++v)
-    if (is_mv[v]) { mv_list.push_back(std::uint32_t(v)); vgiven.push_back(corner_given[v]); }
-  std::vector<std::int32_t> vtag = assign_tags(vgiven, max_vertex_tag);
-  auto& vclass = TetMeshBuilder::vertex_class(m);
+    if (is_mv_[v]) { mv_list.push_back(std::uint32_t(v)); vgiven.push_back(corner_given_[v]); }
+  const std::vector<std::int32_t> vtag = assign_tags(vgiven);
+  auto& vclass = TetMeshBuilder::vertex_class(m_);
+  const auto& edge_class = TetMeshBuilder::edge_class(m_);
   for (std::size_t i = 0; i < mv_list.size(); ++i) vclass[mv_list[i]] = ModelRef{0, vtag[i]};
   for (std::size_t v = 0; v < nv; ++v) {
-    if (is_mv[v]) continue;
-    if (!v_me(v).empty()) vclass[v] = edge_class[cand[v_me(v)[0]].e];
-    else if (v_face[v] != kNoTag) vclass[v] = ModelRef{2, v_face[v]};
-    else vclass[v] = ModelRef{3, m.region(m.vertex_tets(VertexId(v)).front())};
+    if (is_mv_[v]) continue;
+    if (!v_me(v).empty()) vclass[v] = edge_class[cand_[v_me(v)[0]].e];
+    else if (v_face_[v] != kNoTag) vclass[v] = ModelRef{2, v_face_[v]};
+    else vclass[v] = ModelRef{3, m_.region(m_.vertex_tets(VertexId(v)).front())};
   }
+}
 
-  // ---- model topology
-  ModelTopology& topo = TetMeshBuilder::model(m);
+// The model's entities by dimension, sorted by tag, each with what it bounds.
+void ModelInference::build_model_topology() {
+  ModelTopology& topo = TetMeshBuilder::model(m_);
+  const auto& edge_class = TetMeshBuilder::edge_class(m_);
+  const auto& vclass = TetMeshBuilder::vertex_class(m_);
   std::map<std::int32_t, ModelEntity> regions, faces, edges, verts;
-  for (std::size_t t = 0; t < m.num_tets(); ++t) {
-    const std::int32_t tag = m.region(TetId(t));
-    if (t > 0 && tag == m.region(TetId(t - 1))) continue;  // runs of one region: skip the map
+  for (std::size_t t = 0; t < m_.num_tets(); ++t) {
+    const std::int32_t tag = m_.region(TetId(t));
+    if (t > 0 && tag == m_.region(TetId(t - 1))) continue;  // runs of one region: skip the map
     auto& r = regions[tag];
     r.dim = 3;
     r.tag = tag;
   }
-  for (std::size_t r = 0; r < nmf; ++r) {
-    auto& e = faces[tri_face[mf[r]]];
+  for (std::size_t r = 0; r < mf_.size(); ++r) {
+    auto& e = faces[tri_face_[mf_[r]]];
     if (e.regions.empty()) {
       e.dim = 2;
-      e.tag = tri_face[mf[r]];
-      e.regions.push_back(key[r].r0);
-      if (key[r].r1 != kNoTag) e.regions.push_back(key[r].r1);
+      e.tag = tri_face_[mf_[r]];
+      e.regions.push_back(key_[r].r0);
+      if (key_[r].r1 != kNoTag) e.regions.push_back(key_[r].r1);
       e.bounds = e.regions;
       e.bounds.erase(std::unique(e.bounds.begin(), e.bounds.end()), e.bounds.end());
     }
   }
-  for (std::size_t ci = 0; ci < nc; ++ci) {
-    if (!is_me[ci]) continue;
-    auto& me = edges[edge_class[cand[ci].e].tag];
+  for (std::size_t ci = 0; ci < cand_.size(); ++ci) {
+    if (!is_me_[ci]) continue;
+    auto& me = edges[edge_class[cand_[ci].e].tag];
     me.dim = 1;
-    me.tag = edge_class[cand[ci].e].tag;
+    me.tag = edge_class[cand_[ci].e].tag;
     const std::vector<std::int32_t> tags = edge_faces(ci);
     me.bounds.insert(me.bounds.end(), tags.begin(), tags.end());
   }
-  for (std::size_t v = 0; v < nv; ++v) {
-    if (!is_mv[v]) continue;
+  for (std::size_t v = 0; v < m_.num_vertices(); ++v) {
+    if (!is_mv_[v]) continue;
     auto& mv = verts[vclass[v].tag];
     mv.dim = 0;
     mv.tag = vclass[v].tag;
-    for (std::uint32_t ci : v_me(v)) mv.bounds.push_back(edge_class[cand[ci].e].tag);
+    for (std::uint32_t ci : v_me(v)) mv.bounds.push_back(edge_class[cand_[ci].e].tag);
   }
   auto finish = [](std::map<std::int32_t, ModelEntity>& src, std::vector<ModelEntity>& dst) {
     dst.clear();
@@ -515,6 +585,47 @@ ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params, Cl
   finish(edges, topo.entities[1]);
   finish(faces, topo.entities[2]);
   finish(regions, topo.entities[3]);
+}
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+}  // namespace
+
+void ClassifyParams::validate() const {
+  check_param("ClassifyParams::feature_angle_deg", "degrees",
+              ParamRange{kMinFeatureAngleDeg, kMaxFeatureAngleDeg, /*lo_open=*/true}, feature_angle_deg);
+}
+
+Json ClassifyParams::to_json() const {
+  Json j = Json::object();
+  j.set("feature_angle_deg", feature_angle_deg);
+  return j;
+}
+
+Json ClassifyStats::to_json() const {
+  Json j = Json::object();
+  j.set("validate", seconds_validate);
+  j.set("order", seconds_order);
+  j.set("topology", seconds_topology);
+  j.set("classification", seconds_classification);
+  Json out = Json::object();
+  out.set("seconds", j);
+  return out;
+}
+
+ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params, ClassifyStats* stats) {
+  params.validate();
+  ClassifyStats local;
+  ClassifyStats& st = stats ? *stats : local;
+  Compacted c = validate_and_compact(soup, st);
+  auto t0 = Clock::now();
+  ClassifiedTetMesh m = TetMeshBuilder::build_topology(soup.source, std::move(c.points), std::move(c.tets),
+                                                       std::move(c.regions), std::move(c.input_vertex),
+                                                       std::move(c.input_tet));
+  st.seconds_topology = since(t0);
+  t0 = Clock::now();
+  ModelInference(soup, params, c.remap, m).run();
   st.seconds_classification = since(t0);
   return m;
 }

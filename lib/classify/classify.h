@@ -5,6 +5,8 @@
 #pragma once
 #include <string>
 
+#include "core/json.h"
+
 #include "mesh/classified_tet_mesh.h"
 #include "mesh/tet_soup.h"
 
@@ -13,8 +15,15 @@ namespace polydual {
 struct ClassifyParams {
   // Dihedral angle (degrees) between neighbouring model-face triangles above
   // which a model face is split (and between model-edge segments above which a
-  // model vertex is made). Range (0, 180]; 180 disables geometric splitting.
+  // model vertex is made). Range (0, 180]: 0 excluded (every bend would
+  // split); 180 disables geometric splitting.
   double feature_angle_deg = 30.0;
+  static constexpr double kMinFeatureAngleDeg = 0.0;  // excluded
+  static constexpr double kMaxFeatureAngleDeg = 180.0;
+
+  // Throws UsageError naming the field, its unit and its allowed range.
+  void validate() const;
+  Json to_json() const;
 };
 
 // Wall-clock seconds of classify()'s stages (for benchmarks and --json).
@@ -23,12 +32,13 @@ struct ClassifyStats {
   double seconds_order = 0;           // spatial renumbering
   double seconds_topology = 0;        // adjacency, triangles, edges, stars
   double seconds_classification = 0;  // model faces, edges, vertices
+  Json to_json() const;
 };
 
 // Validates on load (SPEC §2): finite coordinates, indices in range, every tet
 // positively oriented by the exact predicate (inverted or zero-volume tets are
 // errors naming the tet), conformity, unused vertices. Throws InputError naming
-// soup.source and the place.
+// soup.source and the place; UsageError if params do not validate().
 ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params = {},
                            ClassifyStats* stats = nullptr);
 

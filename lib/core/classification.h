@@ -14,4 +14,13 @@ struct ModelRef {
   friend constexpr auto operator<=>(ModelRef, ModelRef) = default;
 };
 
+// What a face lies on: inside one region, or on a model face, named from the
+// regions on the model face's two sides (ModelTopology::face_kind).
+enum class FaceKind : std::uint8_t {
+  Interior = 0,   // inside one region, not on a model face
+  External = 1,   // on an external model face (owner only)
+  Interface = 2,  // on a model face between two regions
+  Fracture = 3,   // on a model face with the same region on both sides
+};
+
 }  // namespace polydual

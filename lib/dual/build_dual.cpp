@@ -1,9 +1,11 @@
 // Paper Algorithm 1, step by step (SPEC §4):
 //   STEP 1-4  dual points: tet and model-face triangle central points, model-edge
 //             midpoints, model vertices;
+//   hints     for STEP 9: exact coincidences and short tet-centre edges, found
+//             from the primal while the centres' error bounds are in memory;
 //   STEP 5-6  one dual face per fan of every primal edge;
 //   STEP 7    capping faces, one per run of model-face triangles around a vertex;
-//   STEP 9    cleanup (exact merge, short-edge collapse);
+//   STEP 9    cleanup (lib/dual/cleanup.cpp: exact merge, short-edge collapse);
 //   STEP 8    cells: one per side of every primal vertex.
 #include "dual/build_dual.h"
 
@@ -16,6 +18,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/bits.h"
+#include "core/param_range.h"
 #include "core/radix_sort.h"
 #include "dual/central_points.h"
 #include "dual/cleanup.h"
@@ -27,12 +30,6 @@ namespace polydual {
 namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-FaceKind kind_of_model_face(const ClassifiedTetMesh& m, std::int32_t tag) {
-  const ModelEntity* e = m.model().find(2, tag);
-  if (!e || e->regions.size() < 2) return FaceKind::External;
-  return e->regions[0] == e->regions[1] ? FaceKind::Fracture : FaceKind::Interface;
-}
 
 // Dual point ids of a sparse subset of primal entities (model-face triangles,
 // model-edge edges), numbered consecutively in entity order from `first`: one
@@ -188,38 +185,42 @@ void make_edge_faces(const ClassifiedTetMesh& m, const VertexSides& sides, const
   }
 }
 
-// STEP 7: capping faces. Around each vertex v, walk the model-face triangles
-// containing v through edges (v,w) that are not model edges (such an edge has
-// exactly two model-face triangles, of one model face): each walk is a run.
-void make_caps(const ClassifiedTetMesh& m, const VertexSides& sides, const DualPoints& d, PolyMesh& pm,
-               DualStats& st) {
-  // vertex -> model-face triangles (CSR)
+// Vertex -> model-face triangles (CSR, triangles increasing per vertex).
+struct VertexTriangles {
+  std::vector<std::uint32_t> off;
+  std::vector<TriId> tri;
+  std::span<const TriId> of(std::size_t v) const { return {tri.data() + off[v], tri.data() + off[v + 1]}; }
+};
+
+VertexTriangles vertex_model_triangles(const ClassifiedTetMesh& m) {
   const std::size_t nv = m.num_vertices(), nf = m.num_triangles();
-  std::vector<std::uint32_t> off(nv + 1, 0);
+  VertexTriangles vt;
+  vt.off.assign(nv + 1, 0);
   for (std::size_t f = 0; f < nf; ++f)
     if (m.on_model_face(TriId(f)))
-      for (VertexId v : m.triangle(TriId(f))) ++off[v.idx + 1];
-  for (std::size_t v = 0; v < nv; ++v) off[v + 1] += off[v];
-  std::vector<TriId> vt(off[nv]);
-  {
-    std::vector<std::uint32_t> fill(off.begin(), off.end() - 1);
-    for (std::size_t f = 0; f < nf; ++f)
-      if (m.on_model_face(TriId(f)))
-        for (VertexId v : m.triangle(TriId(f))) vt[fill[v.idx]++] = TriId(f);
-  }
-  // Per vertex v: each triangle k of L seen as (v, A[k], B[k]) in its stored
-  // orientation, and whether the edges (v, A[k]), (v, B[k]) are model edges
-  // (a run stops there).
+      for (VertexId v : m.triangle(TriId(f))) ++vt.off[v.idx + 1];
+  for (std::size_t v = 0; v < nv; ++v) vt.off[v + 1] += vt.off[v];
+  vt.tri.resize(vt.off[nv]);
+  std::vector<std::uint32_t> fill(vt.off.begin(), vt.off.end() - 1);
+  for (std::size_t f = 0; f < nf; ++f)
+    if (m.on_model_face(TriId(f)))
+      for (VertexId v : m.triangle(TriId(f))) vt.tri[fill[v.idx]++] = TriId(f);
+  return vt;
+}
+
+// The runs of model-face triangles around one vertex v (STEP 7). Each
+// triangle k of L is seen as (v, A[k], B[k]) in its stored orientation, with
+// whether the edges (v, A[k]), (v, B[k]) are model edges (a run stops there).
+// The buffers are reused from vertex to vertex.
+struct CapRuns {
+  struct Oriented { std::uint32_t k; VertexId p, q; };  // triangle L[k] seen as (v, p, q)
   std::vector<VertexId> A, B;
   std::vector<char> stopA, stopB, visited;
-  struct Oriented { std::uint32_t k; VertexId p, q; };  // triangle L[k] seen as (v, p, q)
-  std::vector<Oriented> seq;
-  std::vector<PointId> loop;
-  for (std::size_t vi = 0; vi < nv; ++vi) {
-    const VertexId v(vi);
-    const std::span<const TriId> L(vt.data() + off[vi], vt.data() + off[vi + 1]);
-    if (L.empty()) continue;
-    const std::uint32_t n = std::uint32_t(L.size());
+  std::vector<Oriented> seq;  // the current run, in walk order
+  std::uint32_t n = 0;
+
+  void load(const ClassifiedTetMesh& m, VertexId v, std::span<const TriId> L) {
+    n = std::uint32_t(L.size());
     A.resize(n);
     B.resize(n);
     stopA.resize(n);
@@ -233,66 +234,95 @@ void make_caps(const ClassifiedTetMesh& m, const VertexSides& sides, const DualP
       stopA[k] = m.edge_class(m.triangle_edge(L[k], v, A[k])).dim == 1;
       stopB[k] = m.edge_class(m.triangle_edge(L[k], v, B[k])).dim == 1;
     }
-    // The run triangle other than k sharing edge (v, w) (found without
-    // branches: L is short), or -1 at a model edge. Such an edge has exactly
-    // two model-face triangles, of one model face.
-    auto across = [&](std::uint32_t k, VertexId w, bool stop) -> std::int64_t {
-      if (stop) return -1;
-      std::int64_t hit = -1;
-      for (std::uint32_t j = n; j-- > 0;) {
-        const std::int64_t h = std::int64_t((j != k) & ((A[j] == w) | (B[j] == w)));
-        hit ^= (hit ^ std::int64_t(j)) & -h;  // a mask: ?: here compiles to a branch
-      }
-      return hit;
-    };
-    // The vertex of L[j] other than v and w.
-    auto other_than = [&](std::uint32_t j, VertexId w) { return A[j] == w ? B[j] : A[j]; };
-    for (std::uint32_t i0 = 0; i0 < n; ++i0) {
-      if (visited[i0]) continue;
-      const Oriented first{i0, A[i0], B[i0]};
-      // Walk backwards to the start of an open run.
-      Oriented start = first;
-      bool closed = false;
-      for (;;) {
-        const std::int64_t g = across(start.k, start.p, start.p == A[start.k] ? stopA[start.k] : stopB[start.k]);
-        if (g < 0) break;
-        if (std::uint32_t(g) == first.k) { closed = true; break; }
-        start = Oriented{std::uint32_t(g), other_than(std::uint32_t(g), start.p), start.p};
-      }
-      // Walk forwards collecting the run.
-      seq.clear();
-      Oriented cur = start;
-      for (;;) {
-        seq.push_back(cur);
-        visited[cur.k] = 1;
-        const std::int64_t g = across(cur.k, cur.q, cur.q == A[cur.k] ? stopA[cur.k] : stopB[cur.k]);
-        if (g < 0 || std::uint32_t(g) == start.k) break;
-        cur = Oriented{std::uint32_t(g), cur.q, other_than(std::uint32_t(g), cur.q)};
-      }
-      loop.clear();
-      if (!closed) loop.push_back(d.edge_point[m.triangle_edge(L[seq.front().k], v, seq.front().p).idx]);
-      for (const Oriented& o : seq) loop.push_back(d.tri_point[L[o.k].idx]);
-      // A run that leaves and re-enters through the same model edge (a model
-      // edge ending at v inside the face) closes through that edge's midpoint
-      // once: going out to v and back would only add a spike (a repeated point
-      // no polyhedral format accepts). Known limitation: if every cap at v
-      // closes this way, the model vertex v has no dual point (validate()
-      // reports it as missing).
-      if (!closed && seq.front().p != seq.back().q) {
-        loop.push_back(d.edge_point[m.triangle_edge(L[seq.back().k], v, seq.back().q).idx]);
-        if (d.vert_point[vi].valid()) loop.push_back(d.vert_point[vi]);
-      }
-      // The loop follows `first`'s orientation only if `first`'s stored
-      // orientation agrees with the walk: orientation of each triangle in the
-      // walk is induced from `first`, so the owner is the side of the tet that
-      // `first`'s stored orientation points out of.
-      const TriId f0 = L[first.k];
+  }
+  // The run triangle other than k sharing edge (v, w), or -1 at a model edge
+  // (such an edge has exactly two model-face triangles, of one model face).
+  // Found without branches: L is short, and which j matches is a coin toss.
+  [[gnu::always_inline]] std::int64_t across(std::uint32_t k, VertexId w) const {
+    if (w == A[k] ? stopA[k] : stopB[k]) return -1;
+    std::int64_t hit = -1;
+    for (std::uint32_t j = n; j-- > 0;) {
+      const std::int64_t h = std::int64_t((j != k) & ((A[j] == w) | (B[j] == w)));
+      hit ^= (hit ^ std::int64_t(j)) & -h;  // a mask: ?: here compiles to a branch
+    }
+    return hit;
+  }
+  // The vertex of L[j] other than v and w.
+  VertexId other_than(std::uint32_t j, VertexId w) const { return A[j] == w ? B[j] : A[j]; }
+
+  // The run through triangle i0 into seq (from its start if the run is open);
+  // returns whether it is closed (goes all the way round v).
+  bool walk(std::uint32_t i0) {
+    const Oriented first{i0, A[i0], B[i0]};
+    // Walk backwards to the start of an open run.
+    Oriented start = first;
+    bool closed = false;
+    for (;;) {
+      const std::int64_t g = across(start.k, start.p);
+      if (g < 0) break;
+      if (std::uint32_t(g) == first.k) { closed = true; break; }
+      start = Oriented{std::uint32_t(g), other_than(std::uint32_t(g), start.p), start.p};
+    }
+    // Walk forwards collecting the run.
+    seq.clear();
+    Oriented cur = start;
+    for (;;) {
+      seq.push_back(cur);
+      visited[cur.k] = 1;
+      const std::int64_t g = across(cur.k, cur.q);
+      if (g < 0 || std::uint32_t(g) == start.k) break;
+      cur = Oriented{std::uint32_t(g), cur.q, other_than(std::uint32_t(g), cur.q)};
+    }
+    return closed;
+  }
+};
+
+// The loop of the cap of the run in runs.seq around v.
+void cap_loop(const ClassifiedTetMesh& m, const DualPoints& d, VertexId v, std::span<const TriId> L,
+              const CapRuns& runs, bool closed, std::vector<PointId>& loop) {
+  const auto& seq = runs.seq;
+  loop.clear();
+  if (!closed) loop.push_back(d.edge_point[m.triangle_edge(L[seq.front().k], v, seq.front().p).idx]);
+  for (const CapRuns::Oriented& o : seq) loop.push_back(d.tri_point[L[o.k].idx]);
+  // A run that leaves and re-enters through the same model edge (a model
+  // edge ending at v inside the face) closes through that edge's midpoint
+  // once: going out to v and back would only add a spike (a repeated point
+  // no polyhedral format accepts). Known limitation: if every cap at v
+  // closes this way, the model vertex v has no dual point (validate()
+  // reports it as missing).
+  if (!closed && seq.front().p != seq.back().q) {
+    loop.push_back(d.edge_point[m.triangle_edge(L[seq.back().k], v, seq.back().q).idx]);
+    if (d.vert_point[v.idx].valid()) loop.push_back(d.vert_point[v.idx]);
+  }
+}
+
+// STEP 7: capping faces. Around each vertex v, walk the model-face triangles
+// containing v through edges (v,w) that are not model edges (such an edge has
+// exactly two model-face triangles, of one model face): each walk is a run.
+void make_caps(const ClassifiedTetMesh& m, const VertexSides& sides, const DualPoints& d, PolyMesh& pm,
+               DualStats& st) {
+  const VertexTriangles vt = vertex_model_triangles(m);
+  CapRuns runs;
+  std::vector<PointId> loop;
+  for (std::size_t vi = 0; vi < m.num_vertices(); ++vi) {
+    const VertexId v(vi);
+    const std::span<const TriId> L = vt.of(vi);
+    if (L.empty()) continue;
+    runs.load(m, v, L);
+    for (std::uint32_t i0 = 0; i0 < runs.n; ++i0) {
+      if (runs.visited[i0]) continue;
+      const bool closed = runs.walk(i0);
+      cap_loop(m, d, v, L, runs, closed, loop);
+      // The loop follows the orientation of L[i0] (the walk's `first`, whose
+      // orientation every triangle of the walk inherits), so the owner is the
+      // side of the tet that L[i0]'s stored orientation points out of.
+      const TriId f0 = L[i0];
       const TetId t0 = m.triangle_tet(f0, 0), t1 = m.triangle_tet(f0, 1);
       const CellId owner = sides.cell(t0, v);
       const CellId neigh = t1.valid() ? sides.cell(t1, v) : CellId::invalid();
       const std::int32_t tag = m.triangle_class(f0).tag;
       if (owner == neigh) ++st.slit_faces;
-      pm.add_face(loop, owner, neigh, kind_of_model_face(m, tag), tag);
+      pm.add_face(loop, owner, neigh, m.model().face_kind(tag), tag);
     }
   }
 }
@@ -308,6 +338,12 @@ void make_caps(const ClassifiedTetMesh& m, const VertexSides& sides, const DualP
 struct PointPairs {
   std::vector<std::pair<PointId, PointId>> exact, short_;
 };
+
+// The coincidence test adds the two centres' error bounds; the sum is rounded
+// too, and a bound that is a hair too small would skip a needed exact test
+// (an unmerged pair), so it is widened by 0.1 %. Too wide costs only an
+// insphere test (which decides).
+constexpr double kBoundSlack = 1.001;
 
 PointPairs point_pairs(const ClassifiedTetMesh& m, const DualPoints& d, const PolyMesh& pm, double collapse_length) {
   PointPairs out;
@@ -345,7 +381,7 @@ PointPairs point_pairs(const ClassifiedTetMesh& m, const DualPoints& d, const Po
       // the rounded centres differ by more than their error bounds (L9c), they
       // do not: no insphere test needed. Otherwise the exact test decides. A
       // clamped centre's bound is -inf: no tolerance admits it.
-      const double tol = 1.001 * (d.tet_centre_error[t0.idx] + d.tet_centre_error[t1.idx]);
+      const double tol = kBoundSlack * (d.tet_centre_error[t0.idx] + d.tet_centre_error[t1.idx]);
       if (std::fabs(dc.x) > tol || std::fabs(dc.y) > tol || std::fabs(dc.z) > tol) continue;
       if (m.on_model_face(m.tet_triangle(t0, i))) continue;
       const auto& a = m.tet(t0);
@@ -392,24 +428,41 @@ double mean_edge_length(const ClassifiedTetMesh& m) {
   return m.num_edges() ? s / double(m.num_edges()) : 0.0;
 }
 
-// STEP 8: cell half-face lists from face owners/neighbours (face order).
-void assemble_cells(PolyMesh& pm, std::size_t num_cells) {
-  std::vector<std::uint32_t> off(num_cells + 1, 0);
-  for (std::size_t f = 0; f < pm.num_faces(); ++f) {
-    ++off[pm.face_owner[f].idx + 1];
-    if (pm.face_neighbour[f].valid()) ++off[pm.face_neighbour[f].idx + 1];
-  }
-  for (std::size_t c = 0; c < num_cells; ++c) off[c + 1] += off[c];
-  pm.cell_faces.assign(off[num_cells], HalfFace{});
-  std::vector<std::uint32_t> fill(off.begin(), off.end() - 1);
-  for (std::size_t f = 0; f < pm.num_faces(); ++f) {
-    pm.cell_faces[fill[pm.face_owner[f].idx]++] = HalfFace(FaceId(f), 0);
-    if (pm.face_neighbour[f].valid()) pm.cell_faces[fill[pm.face_neighbour[f].idx]++] = HalfFace(FaceId(f), 1);
-  }
-  pm.cell_offsets = std::move(off);
+// Reserve the dual's arrays up front: growing them by doubling would hold up
+// to three copies at the memory peak. Points are counted exactly; faces and
+// their point lists are bounded by the edge rings (sum of ring sizes = 6 per
+// tet) plus the model-face triangle centres, midpoints and model vertices
+// they add (each triangle centre in <= 6 fan faces and 3 caps).
+void reserve_dual(const ClassifiedTetMesh& m, PolyMesh& pm) {
+  std::size_t nmf = 0, nme = 0, nmv = 0;
+  for (std::size_t f = 0; f < m.num_triangles(); ++f) nmf += m.on_model_face(TriId(f));
+  for (std::size_t e = 0; e < m.num_edges(); ++e) nme += m.edge_class(EdgeId(e)).dim == 1;
+  for (std::size_t v = 0; v < m.num_vertices(); ++v) nmv += m.vertex_class(VertexId(v)).dim == 0;
+  const std::size_t np = m.num_tets() + nmf + nme + nmv;
+  pm.points.reserve(np);
+  pm.point_class.reserve(np);
+  const std::size_t nf = m.num_edges() + 2 * nmf + nme;
+  pm.face_offsets.reserve(nf + 1);
+  pm.face_owner.reserve(nf);
+  pm.face_neighbour.reserve(nf);
+  pm.face_kind.reserve(nf);
+  pm.face_tag.reserve(nf);
+  pm.face_points.reserve(6 * m.num_tets() + 9 * nmf + 4 * nme + nmv);
 }
 
 }  // namespace
+
+void DualParams::validate() const {
+  check_param("DualParams::collapse_tolerance", "relative to the mean primal edge length",
+              ParamRange{kMinCollapseTolerance, kMaxCollapseTolerance}, collapse_tolerance);
+}
+
+Json DualParams::to_json() const {
+  Json j = Json::object();
+  j.set("cleanup", cleanup);
+  j.set("collapse_tolerance", collapse_tolerance);
+  return j;
+}
 
 Json DualStats::to_json() const {
   Json j = Json::object();
@@ -425,54 +478,36 @@ Json DualStats::to_json() const {
   sec.set("points", seconds_points);
   sec.set("sides", seconds_sides);
   sec.set("faces", seconds_faces);
+  sec.set("hints", seconds_hints);
   sec.set("cleanup", seconds_cleanup);
   sec.set("cells", seconds_cells);
   j.set("seconds", sec);
   return j;
 }
 
-PolyMesh build_dual(const ClassifiedTetMesh& m, const DualParams& params, DualStats* stats) {
+DualDraft build_dual_draft(const ClassifiedTetMesh& m, const DualParams& params, DualStats* stats) {
+  params.validate();
   DualStats local;
   DualStats& st = stats ? *stats : local;
-  st = DualStats{};
-  PolyMesh pm;
+  DualDraft draft;
+  PolyMesh& pm = draft.mesh;
   auto t0 = Clock::now();
-  // Reserve the dual's arrays up front: growing them by doubling would hold up
-  // to three copies at the memory peak. Points are counted exactly; faces and
-  // their point lists are bounded by the edge rings (sum of ring sizes = 6 per
-  // tet) plus the model-face triangle centres, midpoints and model vertices
-  // they add (each triangle centre in <= 6 fan faces and 3 caps).
-  {
-    std::size_t nmf = 0, nme = 0, nmv = 0;
-    for (std::size_t f = 0; f < m.num_triangles(); ++f) nmf += m.on_model_face(TriId(f));
-    for (std::size_t e = 0; e < m.num_edges(); ++e) nme += m.edge_class(EdgeId(e)).dim == 1;
-    for (std::size_t v = 0; v < m.num_vertices(); ++v) nmv += m.vertex_class(VertexId(v)).dim == 0;
-    const std::size_t np = m.num_tets() + nmf + nme + nmv;
-    pm.points.reserve(np);
-    pm.point_class.reserve(np);
-    const std::size_t nf = m.num_edges() + 2 * nmf + nme;
-    pm.face_offsets.reserve(nf + 1);
-    pm.face_owner.reserve(nf);
-    pm.face_neighbour.reserve(nf);
-    pm.face_kind.reserve(nf);
-    pm.face_tag.reserve(nf);
-    pm.face_points.reserve(6 * m.num_tets() + 9 * nmf + 4 * nme + nmv);
-  }
+  reserve_dual(m, pm);
   DualPoints d = make_points(m, pm, st);
   st.seconds_points = since(t0);
 
-  // STEP 9, first half: the exact coincidences need only the points, so find
-  // them now and free the well-centred flags before the faces fill memory.
+  // The hints need only the points: find them now and free the centres'
+  // error bounds before the faces fill memory.
   t0 = Clock::now();
-  PointPairs pairs;
-  double collapse = 0;
   if (params.cleanup) {
-    collapse = params.collapse_tolerance * mean_edge_length(m);
-    pairs = point_pairs(m, d, pm, collapse);
+    draft.collapse_length = params.collapse_tolerance * mean_edge_length(m);
+    PointPairs pairs = point_pairs(m, d, pm, draft.collapse_length);
+    draft.exact_pairs = std::move(pairs.exact);
+    draft.short_pairs = std::move(pairs.short_);
   }
   d.tet_centre_error = std::vector<double>();
   d.tri_well_centred = std::vector<char>();
-  st.seconds_cleanup = since(t0);
+  st.seconds_hints = since(t0);
 
   t0 = Clock::now();
   VertexSides sides = compute_sides(m);
@@ -483,27 +518,52 @@ PolyMesh build_dual(const ClassifiedTetMesh& m, const DualParams& params, DualSt
   const std::size_t first_cap = pm.num_faces();
   make_caps(m, sides, d, pm, st);  // every cap has model points
   for (std::size_t f = first_cap; f < pm.num_faces(); ++f) model_faces.push_back(std::uint32_t(f));
+  if (params.cleanup) draft.scan_faces = std::move(model_faces);
   st.seconds_faces = since(t0);
 
-  t0 = Clock::now();
   pm.cell_material = std::move(sides.cell_material);
   // Cells name their primal vertex in the input's numbering (what users and
   // files see; ClassifiedTetMesh::input_vertex).
   pm.cell_primal = std::move(sides.cell_vertex);
   for (VertexId& v : pm.cell_primal) v = VertexId(m.input_vertex(v));
-  const std::size_t num_cells = sides.num_cells;
-  // The per-corner sides and the point maps are no longer needed: free them
-  // before the cleanup, which runs at the memory peak.
-  sides = VertexSides{};
-  d = DualPoints{};
-  CleanupResult cr = cleanup_dual(pm, pairs.exact, pairs.short_, collapse, model_faces);
-  st.merged_points = cr.merged_points;
-  st.collapsed_points = cr.collapsed_points;
-  st.dropped_faces = cr.dropped_faces;
-  st.seconds_cleanup += since(t0);
+  draft.num_cells = sides.num_cells;
+  return draft;  // the sides and point maps are freed here, before the cleanup's peak
+}
 
-  t0 = Clock::now();
-  assemble_cells(pm, num_cells);
+PolyMesh assemble_cells(DualDraft&& draft) {
+  PolyMesh pm = std::move(draft.mesh);
+  const std::size_t num_cells = draft.num_cells;
+  draft = DualDraft{};
+  std::vector<std::uint32_t> off(num_cells + 1, 0);
+  for (std::size_t f = 0; f < pm.num_faces(); ++f) {
+    ++off[pm.face_owner[f].idx + 1];
+    if (pm.face_neighbour[f].valid()) ++off[pm.face_neighbour[f].idx + 1];
+  }
+  for (std::size_t c = 0; c < num_cells; ++c) off[c + 1] += off[c];
+  pm.cell_faces.assign(off[num_cells], HalfFace{});
+  std::vector<std::uint32_t> fill(off.begin(), off.end() - 1);
+  for (std::size_t f = 0; f < pm.num_faces(); ++f) {
+    pm.cell_faces[fill[pm.face_owner[f].idx]++] = HalfFace(FaceId(f), 0);
+    if (pm.face_neighbour[f].valid()) pm.cell_faces[fill[pm.face_neighbour[f].idx]++] = HalfFace(FaceId(f), 1);
+  }
+  pm.cell_offsets = std::move(off);
+  return pm;
+}
+
+PolyMesh build_dual(const ClassifiedTetMesh& m, const DualParams& params, DualStats* stats) {
+  DualStats local;
+  DualStats& st = stats ? *stats : local;
+  st = DualStats{};
+  DualDraft draft = build_dual_draft(m, params, &st);
+  // Without hints (params.cleanup off) the cleanup only compacts: it drops
+  // faces under 3 distinct points and points no face uses.
+  const CleanupStats cs = cleanup_dual(draft);
+  st.merged_points = cs.merged_points;
+  st.collapsed_points = cs.collapsed_points;
+  st.dropped_faces = cs.dropped_faces;
+  st.seconds_cleanup = cs.seconds;
+  const auto t0 = Clock::now();
+  PolyMesh pm = assemble_cells(std::move(draft));
   st.seconds_cells = since(t0);
   return pm;
 }

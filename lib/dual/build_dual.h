@@ -1,10 +1,18 @@
 // The dual mesh (SPEC §4, paper Algorithm 1): one polyhedral cell per side of
 // every primal vertex, conformal across interfaces and fractures, with every
 // model vertex, edge and face represented.
+//
+// Three stages, composed by build_dual():
+//   build_dual_draft()  steps 1-7: points, fan faces, caps, and the hints of
+//                       the cleanup (exact coincidences, short tet-centre edges);
+//   cleanup_dual()      step 9 (lib/dual/cleanup.h): merge, collapse, compact;
+//   assemble_cells()    step 8: each cell's half-faces from the face owners.
 #pragma once
 #include <cstdint>
 
 #include "core/json.h"
+#include "dual/cleanup.h"
+#include "dual/dual_draft.h"
 #include "mesh/classified_tet_mesh.h"
 #include "mesh/poly_mesh.h"
 
@@ -12,11 +20,21 @@ namespace polydual {
 
 struct DualParams {
   // Run the cleanup (SPEC §4.9): exact merge of coincident dual points, then
-  // collapse of short edges. Default on.
+  // collapse of short edges. Off: build_dual_draft() finds no hints and
+  // build_dual() skips cleanup_dual().
   bool cleanup = true;
   // Edges shorter than collapse_tolerance x (mean primal edge length) are
-  // collapsed (only between points of the same classification). 0 disables.
+  // collapsed (only between points of the same classification). Relative
+  // (no unit); 0 disables the collapse (the exact merge still runs). At most
+  // half an edge: a larger tolerance would collapse the dual's own edges,
+  // whose lengths are a fraction of the primal's.
   double collapse_tolerance = 1e-3;
+  static constexpr double kMinCollapseTolerance = 0.0;
+  static constexpr double kMaxCollapseTolerance = 0.5;
+
+  // Throws UsageError naming the field, its unit and its allowed range.
+  void validate() const;
+  Json to_json() const;
 };
 
 struct DualStats {
@@ -26,10 +44,27 @@ struct DualStats {
   std::size_t collapsed_points = 0;   // by the short-edge collapse
   std::size_t dropped_faces = 0;      // faces that degenerated below 3 points
   std::size_t slit_faces = 0;         // owner == neighbour (fracture tips)
-  double seconds_points = 0, seconds_sides = 0, seconds_faces = 0, seconds_cleanup = 0, seconds_cells = 0;
+  // Wall-clock seconds: points (steps 1-4), sides, faces (5-7), hints (the
+  // exact coincidences and short tet-centre edges, found by the draft),
+  // cleanup (step 9), cells (step 8).
+  double seconds_points = 0, seconds_sides = 0, seconds_faces = 0, seconds_hints = 0, seconds_cleanup = 0,
+         seconds_cells = 0;
   Json to_json() const;
 };
 
+// Steps 1-7 and the cleanup's hints (when params.cleanup). Fills the stats of
+// these steps (counts of well-centred/clamped simplices, slit faces, seconds
+// of points, sides, faces and hints); leaves the cleanup's and cells' alone.
+// Throws UsageError if params do not validate().
+DualDraft build_dual_draft(const ClassifiedTetMesh& mesh, const DualParams& params = {},
+                           DualStats* stats = nullptr);
+
+// Step 8: the cells' half-face lists (face order within a cell), from the face
+// owners and neighbours. Consumes the draft (hints, if any, are ignored).
+PolyMesh assemble_cells(DualDraft&& draft);
+
+// build_dual_draft, then cleanup_dual (when params.cleanup), then
+// assemble_cells; *stats gets every stage's figures.
 PolyMesh build_dual(const ClassifiedTetMesh& mesh, const DualParams& params = {},
                     DualStats* stats = nullptr);
 

@@ -7,6 +7,17 @@
 namespace polydual {
 
 namespace {
+// A clamped centre stops this relative fraction of the segment short of the
+// face it would cross: the rounded point then lies inside by far more than its
+// rounding error (2^-20 >> 2^-52), and the exact check passes at once.
+constexpr double kClampMargin = 0x1p-20;
+// If the exact check fails anyway, t is pulled towards the centroid: first
+// kFineSteps times by a growing relative step 1e-12 x 2^iter (keeping the
+// point as near the face as possible), then halved; after kMaxSteps in all
+// the rounded centroid is taken.
+constexpr int kFineSteps = 32, kMaxSteps = 64;
+constexpr double kFirstStep = 1e-12;
+
 bool in_closed_tet(const Point3& p, const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
   // EXACT: p is in the closed positive tet iff no face sees it on its outer side.
   return orient3d(p, b, c, d) != Sign::Negative && orient3d(a, p, c, d) != Sign::Negative &&
@@ -33,15 +44,13 @@ CentralPoint tet_central_point(const Point3& a, const Point3& b, const Point3& c
     const double ti = 0.25 / (0.25 - std::min(lam[i], 0.0));
     t = std::min(t, ti);
   }
-  // Stop a relative 2^-20 short of the face: the rounded point then lies inside
-  // by far more than its rounding error and the exact check below passes at
-  // once (it is still the check that decides).
-  t *= 1.0 - 0x1p-20;
+  // Stop short of the face (kClampMargin); the exact check below still decides.
+  t *= 1.0 - kClampMargin;
   const Point3 g = a + 0.25 * (u + v + w);
   Point3 p = g + t * (cc - g);
-  for (int iter = 0; iter < 64; ++iter) {
+  for (int iter = 0; iter < kMaxSteps; ++iter) {
     if (in_closed_tet(p, a, b, c, d)) return {p, false};
-    t *= (iter < 32 ? 1.0 - 1e-12 * double(1ull << std::min(iter, 40)) : 0.5);
+    t *= (iter < kFineSteps ? 1.0 - kFirstStep * double(1ull << iter) : 0.5);
     p = g + t * (cc - g);
   }
   if (in_closed_tet(p, a, b, c, d)) return {p, false};

@@ -1,30 +1,33 @@
-// Cleanup of the raw dual (SPEC §4 step 9, paper §2.8): merge points known to
-// coincide exactly, collapse short edges between points of the same
-// classification, rewrite face loops, drop faces that degenerate below three
-// points, and drop points no face uses. Works on a PolyMesh whose cells are not
-// assembled yet (faces with owner/neighbour only).
+// Cleanup of the draft dual (SPEC §4 step 9, paper §2.8): merge the points the
+// builder found to coincide exactly, collapse short edges between points of the
+// same classification, rewrite face loops, drop faces that degenerate below
+// three distinct points, and drop points no face uses. Reads and writes only
+// the draft: its mesh (points and faces; cells are not assembled yet) and its
+// hints.
 #pragma once
-#include <utility>
-#include <vector>
+#include <cstddef>
 
-#include "core/handles.h"
-#include "mesh/poly_mesh.h"
+#include "core/json.h"
+#include "dual/dual_draft.h"
 
 namespace polydual {
 
-struct CleanupResult {
-  std::size_t merged_points = 0, collapsed_points = 0, dropped_faces = 0;
+struct CleanupStats {
+  std::size_t merged_points = 0;     // by the exact coincidences (exact_pairs)
+  std::size_t collapsed_points = 0;  // by the short-edge collapse
+  std::size_t dropped_faces = 0;     // faces left with fewer than 3 distinct points
+  std::size_t dropped_points = 0;    // points no face uses any more
+  double seconds = 0;
+  Json to_json() const;
 };
 
-// exact_pairs: pairs of points that coincide exactly (decided by the caller
-// with exact predicates). collapse_length: absolute length below which an edge
-// between two points of equal classification is collapsed (0: none). Short
-// edges are looked for in short_pairs (pairs of points the caller found closer
-// than collapse_length: the dual's tet-centre edges, found from the primal
-// triangles they cross) and in the loops of scan_faces (sorted face ids:
-// every face with an edge that short_pairs does not cover).
-CleanupResult cleanup_dual(PolyMesh& mesh, const std::vector<std::pair<PointId, PointId>>& exact_pairs,
-                           const std::vector<std::pair<PointId, PointId>>& short_pairs, double collapse_length,
-                           const std::vector<std::uint32_t>& scan_faces);
+// The collapse length and the pairs to look at are the draft's
+// (DualDraft::collapse_length, exact_pairs, short_pairs, scan_faces): the
+// builder found them for its DualParams. Points merged into one keep the
+// coordinates and classification of the smallest id; points and faces keep
+// their relative order. Works in place, without a second mesh (the cleanup
+// runs at the memory peak of the dual construction). The hints are consumed
+// (left empty).
+CleanupStats cleanup_dual(DualDraft& draft);
 
 }  // namespace polydual

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <numeric>
+#include <stdexcept>
 
 #include "core/error.h"
 
@@ -44,6 +45,17 @@ const ModelEntity* ModelTopology::find(int dim, std::int32_t tag) const {
   auto it = std::lower_bound(v.begin(), v.end(), tag,
                              [](const ModelEntity& e, std::int32_t t) { return e.tag < t; });
   return (it != v.end() && it->tag == tag) ? &*it : nullptr;
+}
+
+FaceKind face_kind(const ModelEntity& face) {
+  if (face.regions.size() < 2) return FaceKind::External;
+  return face.regions[0] == face.regions[1] ? FaceKind::Fracture : FaceKind::Interface;
+}
+
+FaceKind ModelTopology::face_kind(std::int32_t tag) const {
+  const ModelEntity* e = find(2, tag);
+  if (!e) throw std::out_of_range("ModelTopology::face_kind: no model face with tag " + std::to_string(tag));
+  return polydual::face_kind(*e);
 }
 
 EdgeId ClassifiedTetMesh::find_edge(VertexId a, VertexId b) const {
@@ -111,7 +123,34 @@ double ClassifiedTetMesh::tet_volume(TetId t) const {
   return dot(points_[v[1].idx] - a, cross(points_[v[2].idx] - a, points_[v[3].idx] - a)) / 6.0;
 }
 
-ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector<Point3> points,
+// Tets bucketed by their smallest, second and third smallest vertex
+// (counting sorts, tet order kept in each bucket). Every tet face has its
+// smallest vertex in bucket 0 (three faces) or 1 (the face opposite the
+// smallest vertex); every tet edge has its lower vertex in bucket 0 (three
+// edges), 1 (two) or 2 (one). Faces and edges are then found one vertex at a
+// time among a few tets.
+struct TetMeshBuilder::LowVertexBuckets {
+  std::vector<std::uint8_t> sorted;  // per tet: its local indices by increasing vertex id, 2 bits each
+  std::array<std::vector<std::uint32_t>, 3> off, bucket;  // bucket r: CSR by vertex of tets
+};
+
+namespace {
+// The face-matching table: at least 2^6 slots (no resizing for small stars),
+// hashed by the multiplicative (Fibonacci) hash of the key: 2^64 / golden ratio.
+constexpr int kMinTableBits = 6;
+constexpr std::uint64_t kFibonacciHash = 0x9E3779B97F4A7C15ull;
+// Edge ids of a vertex's neighbours are ranked by counting (n^2 compares, no
+// data-dependent branches) up to this many neighbours; more (a fan) are sorted.
+constexpr std::size_t kMaxCountedNeighbours = 64;
+// The edge count from Euler's relation is exact for a ball; the slack covers
+// a few handles or cavities before the array has to grow.
+constexpr std::size_t kEdgeGuessSlack = 16;
+}  // namespace
+
+// Flattened: the phases below are written as functions but compiled into
+// this one (fewer instructions than as calls, callgrind), as the kernels were
+// tuned.
+[[gnu::flatten]] ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector<Point3> points,
                                                  std::vector<std::array<VertexId, 4>> tets,
                                                  std::vector<std::int32_t> regions,
                                                  std::vector<std::uint32_t> input_vertex,
@@ -135,8 +174,19 @@ ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector
     m.input_tet_.resize(nt);
     std::iota(m.input_tet_.begin(), m.input_tet_.end(), 0u);
   }
-  constexpr std::uint32_t kNoNeighbour = ClassifiedTetMesh::kNoNeighbour;
+  build_vertex_stars(m);
+  const LowVertexBuckets b = bucket_by_low_vertices(m);
+  const std::size_t num_tris = match_faces(m, b);
+  number_triangles(m, num_tris);
+  number_edges(m, b, num_tris);
+  m.vertex_class_.assign(nv, ModelRef{});
+  m.edge_class_.assign(m.edge_code_.size(), ModelRef{});
+  m.tri_face_.assign(m.tri_code_.size(), ClassifiedTetMesh::kNoFace);
+  return m;
+}
 
+void TetMeshBuilder::build_vertex_stars(ClassifiedTetMesh& m) {
+  const std::size_t nv = m.points_.size(), nt = m.tets_.size();
   // Vertex stars (CSR, tets in increasing order).
   m.vstar_off_.assign(nv + 1, 0);
   for (const auto& t : m.tets_)
@@ -148,16 +198,15 @@ ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector
     for (std::size_t t = 0; t < nt; ++t)
       for (VertexId v : m.tets_[t]) m.vstar_[fill[v.idx]++] = TetId(t);
   }
+}
 
-  // Tets bucketed by their smallest, second and third smallest vertex
-  // (counting sorts, tet order kept in each bucket). Every tet face has its
-  // smallest vertex in bucket 0 (three faces) or 1 (the face opposite the
-  // smallest vertex); every tet edge has its lower vertex in bucket 0 (three
-  // edges), 1 (two) or 2 (one). Faces and edges are then found one vertex at a
-  // time among a few tets.
-  // sorted[t]: t's local indices by increasing vertex id, 2 bits each.
-  std::vector<std::uint8_t> sorted(nt);
-  std::array<std::vector<std::uint32_t>, 3> boff, bucket;
+TetMeshBuilder::LowVertexBuckets TetMeshBuilder::bucket_by_low_vertices(const ClassifiedTetMesh& m) {
+  const std::size_t nv = m.points_.size(), nt = m.tets_.size();
+  LowVertexBuckets b;
+  auto& sorted = b.sorted;
+  auto& boff = b.off;
+  auto& bucket = b.bucket;
+  sorted.resize(nt);
   {
     for (int r = 0; r < 3; ++r) boff[r].assign(nv + 1, 0);
     for (std::size_t t = 0; t < nt; ++t) {
@@ -184,7 +233,15 @@ ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector
     for (std::size_t t = 0; t < nt; ++t)
       for (int r = 0; r < 3; ++r) bucket[r][fill[r][m.tets_[t][(sorted[t] >> (2 * r)) & 3].idx]++] = std::uint32_t(t);
   }
+  return b;
+}
 
+std::size_t TetMeshBuilder::match_faces(ClassifiedTetMesh& m, const LowVertexBuckets& b) {
+  const std::size_t nv = m.points_.size(), nt = m.tets_.size();
+  constexpr std::uint32_t kNoNeighbour = ClassifiedTetMesh::kNoNeighbour;
+  const auto& sorted = b.sorted;
+  const auto& boff = b.off;
+  const auto& bucket = b.bucket;
   // Face adjacency: for each vertex v, the faces whose smallest vertex is v
   // (buckets 0 and 1), matched on their two other vertices (mid, max) in a
   // small open-addressing table (slots stamped with v, so nothing is cleared
@@ -203,13 +260,13 @@ ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector
     for (std::size_t v = 0; v < nv; ++v) {
       const std::size_t n_here = 3 * std::size_t(boff[0][v + 1] - boff[0][v]) + (boff[1][v + 1] - boff[1][v]);
       // At most a quarter full: a probe rarely goes past its first slot.
-      const int bits = std::max(6, int(std::bit_width(4 * n_here - (n_here > 0))));
+      const int bits = std::max(kMinTableBits, int(std::bit_width(4 * n_here - (n_here > 0))));
       if (table.size() < (std::size_t(1) << bits)) table.assign(std::size_t(1) << bits, Slot{0, 0, 0});
       const std::uint64_t mask = (std::uint64_t(1) << bits) - 1;
       const std::uint32_t stamp = 2 * (std::uint32_t(v) + 1);
       auto add_face = [&](std::uint32_t t, int i, std::uint32_t mid, std::uint32_t max) {
         const std::uint64_t key = std::uint64_t(mid) << 32 | max;
-        std::uint64_t h = (key * 0x9E3779B97F4A7C15ull) >> (64 - bits);
+        std::uint64_t h = (key * kFibonacciHash) >> (64 - bits);
         // Go on while the slot holds another key of this vertex, with ONE
         // branch per probe: whether the slot is taken is the coin toss, so
         // both tests are folded into one integer (zero iff taken and different).
@@ -252,6 +309,11 @@ ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector
     }
   }
   m.tet_adj_.pop_back();
+  return num_tris;
+}
+
+void TetMeshBuilder::number_triangles(ClassifiedTetMesh& m, std::size_t num_tris) {
+  const std::size_t nt = m.tets_.size();
   // Triangles, numbered in the order (tet, local face) of their first tet: a
   // face is new unless its neighbour comes earlier (branch-free). The face
   // -> triangle map is not stored: one bit per local face marks the first
@@ -275,6 +337,13 @@ ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector
     }
   }
   m.tri_code_.pop_back();
+}
+
+void TetMeshBuilder::number_edges(ClassifiedTetMesh& m, const LowVertexBuckets& b, std::size_t num_tris) {
+  const std::size_t nv = m.points_.size(), nt = m.tets_.size();
+  const auto& sorted = b.sorted;
+  const auto& boff = b.off;
+  const auto& bucket = b.bucket;
   // Edges, numbered by (lower vertex v, higher vertex w): for each v, the tet
   // edges whose lower vertex is v (buckets 0..2) are gathered once; their
   // distinct w (a marker per vertex) get consecutive ids in increasing w, each
@@ -286,7 +355,7 @@ ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector
     std::vector<Rec> recs, nbs;
     m.tet_edge_.resize(6 * nt);
     // Euler's relation for a ball: E = V + T + (boundary triangles)/2 - 1.
-    const std::size_t ne_guess = nv + nt + (2 * num_tris - 4 * nt) / 2 + 16;
+    const std::size_t ne_guess = nv + nt + (2 * num_tris - 4 * nt) / 2 + kEdgeGuessSlack;
     m.edge_code_.reserve(ne_guess);
     for (std::size_t v = 0; v < nv; ++v) {
       const std::uint32_t vv = std::uint32_t(v);
@@ -313,9 +382,9 @@ ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector
       const std::uint32_t base = std::uint32_t(m.edge_code_.size());
       m.edge_code_.resize(base + n_nbs);
       // Counting is quadratic: a vertex with very many neighbours (a fan) sorts.
-      if (n_nbs > 64) std::sort(nbs.begin(), nbs.begin() + std::ptrdiff_t(n_nbs), [](Rec x, Rec y) { return x.w < y.w; });
+      if (n_nbs > kMaxCountedNeighbours) std::sort(nbs.begin(), nbs.begin() + std::ptrdiff_t(n_nbs), [](Rec x, Rec y) { return x.w < y.w; });
       for (std::size_t i = 0; i < n_nbs; ++i) {
-        if (n_nbs > 64) {
+        if (n_nbs > kMaxCountedNeighbours) {
           m.edge_code_[base + i] = nbs[i].code;
           slot[nbs[i].w] = base + std::uint32_t(i);
           continue;
@@ -329,10 +398,6 @@ ClassifiedTetMesh TetMeshBuilder::build_topology(std::string source, std::vector
         m.tet_edge_[6 * (recs[i].code >> 3) + (recs[i].code & 7)] = EdgeId(slot[recs[i].w]);
     }
   }
-  m.vertex_class_.assign(nv, ModelRef{});
-  m.edge_class_.assign(m.edge_code_.size(), ModelRef{});
-  m.tri_face_.assign(m.tri_code_.size(), ClassifiedTetMesh::kNoFace);
-  return m;
 }
 
 }  // namespace polydual

@@ -76,10 +76,18 @@ struct ModelEntity {
   std::vector<std::int32_t> regions; // for faces: regions on its sides (1 or 2 tags, equal twice for a fracture)
 };
 
+// The kind of a model face (dim 2) from its regions: one region listed ->
+// External; two equal -> Fracture (the same region on both sides); two
+// different -> Interface. The one place this rule is written.
+FaceKind face_kind(const ModelEntity& face);
+
 struct ModelTopology {
   std::array<std::vector<ModelEntity>, 4> entities;  // by dimension, sorted by tag
   const ModelEntity* find(int dim, std::int32_t tag) const;
   std::size_t count(int dim) const { return entities[dim].size(); }
+  // face_kind() of the model face `tag`; a tag that names no model face is a
+  // caller's error (std::out_of_range naming the tag).
+  FaceKind face_kind(std::int32_t tag) const;
 };
 
 class ClassifiedTetMesh {
@@ -267,6 +275,15 @@ class TetMeshBuilder {
   static std::vector<std::int32_t>& triangle_face(ClassifiedTetMesh& m) { return m.tri_face_; }
   static constexpr std::int32_t kNoFace = ClassifiedTetMesh::kNoFace;
   static ModelTopology& model(ClassifiedTetMesh& m) { return m.model_; }
+
+ private:
+  // build_topology()'s phases, in order (lib/mesh/classified_tet_mesh.cpp).
+  struct LowVertexBuckets;
+  static void build_vertex_stars(ClassifiedTetMesh& m);
+  static LowVertexBuckets bucket_by_low_vertices(const ClassifiedTetMesh& m);
+  static std::size_t match_faces(ClassifiedTetMesh& m, const LowVertexBuckets& b);
+  static void number_triangles(ClassifiedTetMesh& m, std::size_t num_tris);
+  static void number_edges(ClassifiedTetMesh& m, const LowVertexBuckets& b, std::size_t num_tris);
 };
 
 }  // namespace polydual

@@ -18,13 +18,7 @@
 
 namespace polydual {
 
-enum class FaceKind : std::uint8_t {
-  Interior = 0,   // inside one region, not on a model face
-  External = 1,   // on an external model face (owner only)
-  Interface = 2,  // on a model face between two regions
-  Fracture = 3,   // on a model face with the same region on both sides
-};
-
+// FaceKind (lib/core/classification.h): what a dual face lies on.
 struct PolyMesh {
   // Points
   std::vector<Point3> points;

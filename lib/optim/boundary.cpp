@@ -43,6 +43,14 @@ Point3 BoundaryConstraints::closest(std::uint32_t i, const Point3& x) const {
 
 BoundaryConstraints::BoundaryConstraints(const ClassifiedTetMesh& primal, const PolyMesh& mesh)
     : verts_(primal.points()), cls_(mesh.point_class) {
+  collect_primitives(primal);
+  index_vertex_primitives();
+  build_grid();
+  assign_initial_primitives(mesh);
+}
+
+// The facetisation: triangles on model faces, then edges on model edges.
+void BoundaryConstraints::collect_primitives(const ClassifiedTetMesh& primal) {
   for (std::size_t f = 0; f < primal.num_triangles(); ++f) {
     const ModelRef r = primal.triangle_class(TriId(f));
     if (r.dim == 2) prims_.push_back({primal.triangle(TriId(f)), 2, r.tag});
@@ -54,20 +62,26 @@ BoundaryConstraints::BoundaryConstraints(const ClassifiedTetMesh& primal, const 
       prims_.push_back({{ev[0], ev[1], VertexId::invalid()}, 1, r.tag});
     }
   }
-  // Vertex -> primitives (CSR, primitives increasing per vertex: deterministic walks).
+}
+
+// Vertex -> primitives (CSR, primitives increasing per vertex: deterministic walks).
+void BoundaryConstraints::index_vertex_primitives() {
   vprim_off_.assign(verts_.size() + 1, 0);
   for (const Prim& q : prims_)
     for (int k = 0; k < q.dim + 1; ++k) ++vprim_off_[q.v[k].idx + 1];
   for (std::size_t v = 0; v < verts_.size(); ++v) vprim_off_[v + 1] += vprim_off_[v];
   vprim_.resize(vprim_off_.back());
-  {
-    std::vector<std::uint32_t> fill(vprim_off_.begin(), vprim_off_.end() - 1);
-    for (std::uint32_t i = 0; i < prims_.size(); ++i)
-      for (int k = 0; k < prims_[i].dim + 1; ++k) vprim_[fill[prims_[i].v[k].idx]++] = i;
-  }
-  // Uniform grid: cell size ~ twice the mean primitive extent.
-  Point3 hi{-1e300, -1e300, -1e300};
-  lo_ = {1e300, 1e300, 1e300};
+  std::vector<std::uint32_t> fill(vprim_off_.begin(), vprim_off_.end() - 1);
+  for (std::uint32_t i = 0; i < prims_.size(); ++i)
+    for (int k = 0; k < prims_[i].dim + 1; ++k) vprim_[fill[prims_[i].v[k].idx]++] = i;
+}
+
+// Uniform grid over the primitives' bounding boxes: cell size kGridCellExtents
+// x the mean primitive extent, at most kMaxGridCells cells along the longest
+// axis; each primitive is listed in every cell its box meets.
+void BoundaryConstraints::build_grid() {
+  Point3 hi{-kFar, -kFar, -kFar};
+  lo_ = {kFar, kFar, kFar};
   double ext = 0;
   for (const Prim& q : prims_) {
     Point3 a = verts_[q.v[0].idx], b = a;
@@ -80,15 +94,16 @@ BoundaryConstraints::BoundaryConstraints(const ClassifiedTetMesh& primal, const 
     ext += std::max({b.x - a.x, b.y - a.y, b.z - a.z});
   }
   if (!prims_.empty()) {
-    h_ = std::max(2.0 * ext / static_cast<double>(prims_.size()), 1e-300);
+    h_ = std::max(kGridCellExtents * ext / static_cast<double>(prims_.size()), kMinGridCell);
     const double span = std::max({hi.x - lo_.x, hi.y - lo_.y, hi.z - lo_.z});
-    h_ = std::max(h_, span / 256.0);  // at most 256^3 cells
+    h_ = std::max(h_, span / kMaxGridCells);
     for (int d = 0; d < 3; ++d) n_[d] = std::max(1, static_cast<int>(std::ceil((hi[d] - lo_[d]) / h_)) + 1);
   }
   auto cell_of = [&](double v, int d) { return std::clamp(static_cast<int>(std::floor((v - lo_[d]) / h_)), 0, n_[d] - 1); };
   const std::size_t ncell = static_cast<std::size_t>(n_[0]) * n_[1] * n_[2];
   std::vector<std::array<int, 6>> box(prims_.size());
   grid_off_.assign(ncell + 1, 0);
+  // Pass 0 counts the entries of each cell (and computes the boxes), pass 1 fills them.
   for (std::uint32_t pass = 0; pass < 2; ++pass) {
     std::vector<std::uint32_t> fill;
     if (pass == 1) {
@@ -117,7 +132,10 @@ BoundaryConstraints::BoundaryConstraints(const ClassifiedTetMesh& primal, const 
           }
     }
   }
-  // Initial primitive of every boundary point.
+}
+
+// Initial primitive of every boundary point: the nearest of its model entity.
+void BoundaryConstraints::assign_initial_primitives(const PolyMesh& mesh) {
   const std::size_t np = mesh.num_points();
   dof_.assign(np, 0);
   current_.assign(np, kNone);
@@ -193,7 +211,7 @@ Point3 BoundaryConstraints::project(PointId p, const Point3& x, std::uint32_t* p
   const Prim& me = prims_[cur];
   Point3 y = closest(cur, x);
   double dy = norm2(y - x);
-  for (int hop = 0; hop < 64; ++hop) {
+  for (int hop = 0; hop < kMaxHops; ++hop) {
     std::uint32_t next = cur;
     const Prim& pc = prims_[cur];
     for (int v = 0; v < pc.dim + 1; ++v) {

@@ -13,7 +13,7 @@
 // project() then walks from the current primitive to the nearest point of the
 // model entity: it examines the primitives of the same model entity that share a
 // primal vertex with the current one, moves to the one holding the nearest point,
-// and repeats until the current one is the nearest (at most 64 hops). The result
+// and repeats until the current one is the nearest (at most kMaxHops hops). The result
 // lies on a primitive, so it is on the original facetisation up to rounding, and
 // commit() makes that primitive current (re-centring the parametric space).
 #pragma once
@@ -55,6 +55,22 @@ class BoundaryConstraints {
     std::int8_t dim;            // 2 triangle, 1 segment
     std::int32_t tag;
   };
+  // The walk of project() stops after this many moves (the nearest point is
+  // then a local one; on a facetisation of a smooth entity a few suffice).
+  static constexpr int kMaxHops = 64;
+  // Grid cells are this many mean primitive extents wide (a primitive then
+  // meets a few cells), at least kMinGridCell (degenerate facetisations), and
+  // at most kMaxGridCells along the longest axis (memory).
+  static constexpr double kGridCellExtents = 2.0;
+  static constexpr double kMinGridCell = 1e-300;
+  static constexpr double kMaxGridCells = 256.0;
+  static constexpr double kFar = 1e300;  // the bounding box's start (beyond any coordinate)
+
+  // The constructor's phases, in order.
+  void collect_primitives(const ClassifiedTetMesh& primal);
+  void index_vertex_primitives();
+  void build_grid();
+  void assign_initial_primitives(const PolyMesh& mesh);
   Point3 closest(std::uint32_t prim, const Point3& x) const;
   std::uint32_t nearest_by_grid(const Point3& x, int dim, std::int32_t tag) const;
 

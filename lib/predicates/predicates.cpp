@@ -83,111 +83,140 @@ void circumcenter_barycentric_signs(const Point3& a, const Point3& b, const Poin
   (void)circumcenter_with_signs(a, b, c, d, out, lambda);
 }
 
-Point3 circumcenter_with_signs(const Point3& a, const Point3& b, const Point3& c, const Point3& d, Sign out[4],
-                               double lambda[4], double* error) {
-  auto& cnt = predicate_counters();
+namespace {
+constexpr double kEps = DBL_EPSILON / 2;  // unit roundoff 2^-53
+// Magnitudes of a numerator's tree on absolute values inside which neither
+// underflow nor overflow can spoil the filter's bound (proofs/star_filter.md):
+// outside, the sign is decided exactly.
+constexpr double kFilterMagMin = 1e-200, kFilterMagMax = 1e200;
+// The centre's error bound (L9c) is derived for magnitudes in this range
+// only; outside it the bound is +infinity (no coincidence is then admitted
+// without the exact test).
+constexpr double kCentreMagMin = 1e-100, kCentreMagMax = 1e100;
+// Absolute terms of e_D and e_n covering underflow residues.
+constexpr double kDetUnderflow = 1e-250, kNumUnderflow = 1e-240;
+
+// The semi-static filter of the four barycentric numerators of a tet's
+// circumcentre (proofs/star_filter.md, §circumcenter), and what the centre's
+// error bound needs, all from the same products.
+struct CircumFilter {
+  double val[4], bound[4];  // the numerators in doubles and their error bounds
+  int range[4];             // 1 where the magnitudes rule out under/overflow
+  double D, PD, N_star;  // det[u, v, w], its permanent, N* (L9c)
   Point3 center;
-  // Orientation-preserving orders that bring each vertex to slot 1 of
-  // circ_bary_numerator: a -> (b,a,d,c), b -> (a,b,c,d), c -> (a,c,d,b), d -> (a,d,b,c).
-  const Point3* p[4] = {&a, &b, &c, &d};
-  static constexpr int perm[4][4] = {{1, 0, 3, 2}, {0, 1, 2, 3}, {0, 2, 3, 1}, {0, 3, 1, 2}};
-  // Semi-static filter (proofs/star_filter.md, §circumcenter): the value in
-  // doubles and the same expression tree on absolute values, mag; the rounding
-  // error of the degree-6 polynomial is below 64 eps mag. For b, c, d the
-  // orders start at a and rotate (u, v, w) = (b-a, c-a, d-a), so the three
-  // share their cross products: with n = |u|^2 (v x w) + |v|^2 (w x u) + |w|^2 (u x v),
-  // the numerators are n.(v x w), n.(w x u), n.(u x v) (each summed in the
-  // order of circ_bary_numerator, so the bound is the same).
-  // The numerator at a is not computed from its own order (b, a, d, c): the
-  // four numerators sum to 2 D^2 (the barycentrics sum to 1), so
-  // N_a = 2 D^2 - N_b - N_c - N_d, with the error bound of L9b (ibid.):
-  //   |fl(N_a) - N_a| <= 128 eps (|fl(N_a)| + P_D^2 + mag_b + mag_c + mag_d),
-  // P_D the permanent of D. bound[i]: the filter's bound for numerator i;
-  // range[i]: its magnitudes lie where no underflow or overflow can spoil it.
-  double val[4], bound[4];
-  int range[4];
-  // Kept for the centre's error bound (L9c), computed at the end only for a
-  // well-centred tet (the only ones whose centres are compared).
-  double D_val = 0, PD_val = 0, N_star = 0;
+};
+
+// For b, c, d the orders start at a and rotate (u, v, w) = (b-a, c-a, d-a),
+// so the three share their cross products: with n = |u|^2 (v x w) + |v|^2
+// (w x u) + |w|^2 (u x v), the numerators are n.(v x w), n.(w x u), n.(u x v)
+// (each summed in the order of circ_bary_numerator, so the bound is the
+// same; the rounding error of the degree-6 polynomial is below 64 eps mag).
+// The numerator at a is not computed from its own order (b, a, d, c): the
+// four numerators sum to 2 D^2 (the barycentrics sum to 1), so
+// N_a = 2 D^2 - N_b - N_c - N_d, with the error bound of L9b (ibid.):
+//   |fl(N_a) - N_a| <= 128 eps (|fl(N_a)| + P_D^2 + mag_b + mag_c + mag_d),
+// P_D the permanent of D. Inlined: it runs once per tet, in the dual's
+// hottest loop, and its temporaries stay in registers.
+[[gnu::always_inline]] inline CircumFilter circum_filter(const Point3& a, const Point3& b, const Point3& c,
+                                                         const Point3& d, double lambda[4]) {
   auto acr = [](const Vec3& x, const Vec3& y) {
     return Vec3{x.y * y.z + x.z * y.y, x.z * y.x + x.x * y.z, x.x * y.y + x.y * y.x};
   };
   auto fabs3 = [](const Vec3& x) { return Vec3{std::fabs(x.x), std::fabs(x.y), std::fabs(x.z)}; };
-  constexpr double eps = DBL_EPSILON / 2;
-  auto in_range = [](double m) { return int(m > 1e-200) & int(m < 1e200); };
-  {
-    const Vec3 u = b - a, v = c - a, w = d - a;
-    const Vec3 au = fabs3(u), av = fabs3(v), aw = fabs3(w);
-    const Vec3 vw = cross(v, w), wu = cross(w, u), uv = cross(u, v);
-    const Vec3 avw = acr(av, aw), awu = acr(aw, au), auv = acr(au, av);
-    const double nu = dot(u, u), nv = dot(v, v), nw = dot(w, w);
-    double mag[4];
-    val[1] = nu * dot(vw, vw) + nv * dot(wu, vw) + nw * dot(uv, vw);
-    mag[1] = nu * dot(avw, avw) + nv * dot(awu, avw) + nw * dot(auv, avw);
-    val[2] = nv * dot(wu, wu) + nw * dot(uv, wu) + nu * dot(vw, wu);
-    mag[2] = nv * dot(awu, awu) + nw * dot(auv, awu) + nu * dot(avw, awu);
-    val[3] = nw * dot(uv, uv) + nu * dot(vw, uv) + nv * dot(wu, uv);
-    mag[3] = nw * dot(auv, auv) + nu * dot(avw, auv) + nv * dot(awu, auv);
-    const double D = dot(u, vw), PD = dot(au, avw);
-    val[0] = 2.0 * D * D - (val[1] + val[2] + val[3]);
-    mag[0] = PD * PD;
-    for (int i = 1; i < 4; ++i) bound[i] = 64.0 * eps * mag[i];
-    bound[0] = 128.0 * eps * (std::fabs(val[0]) + mag[0] + mag[1] + mag[2] + mag[3]);
-    for (int i = 0; i < 4; ++i) range[i] = in_range(mag[i]);
-    // Doubles only (not decisions): c - a = n / (2D), lambda_i = val_i / (2 D^2).
-    const Vec3 n = nu * vw + nv * wu + nw * uv;
-    const Vec3 q = n / (2.0 * D);
-    center = a + q;
-    D_val = D;
-    PD_val = PD;
-    // N* >= every coordinate of n's tree on absolute values.
-    N_star = (nu + nv + nw) * ((avw.x + avw.y + avw.z) + (awu.x + awu.y + awu.z) + (auv.x + auv.y + auv.z));
-    const double inv = 1.0 / (2.0 * D * D);
-    for (int i = 1; i < 4; ++i) lambda[i] = val[i] * inv;
-    lambda[0] = 1.0 - lambda[1] - lambda[2] - lambda[3];
-  }
-  // L9c: with e_D = 9 eps P_D, e_n = 13 eps N* (N* bounding every coordinate
-  // of n's tree on absolute values, so |n~_k| <= N* too) and Dl = |D~| - e_D > 0,
-  //   |c~_k - c_k| <= (e_n + (N* + e_n) e_D / Dl) / (2 |D~|) + 1.01 eps (|q~_k| + |c~_k|),
-  // |q~_k| <= 1.01 N* / (2 |D~|); doubled for the rounding of the bound itself.
-  // Magnitudes are kept in (1e-100, 1e100); e_n and e_D carry absolute terms
-  // for underflow residues.
-  auto centre_error = [&]() {
-    const double eD = 9.0 * eps * PD_val + 1e-250, aD = std::fabs(D_val), Dl = aD - eD;
-    if (!(PD_val > 1e-100 && PD_val < 1e100 && N_star < 1e100 && Dl > 0.5 * aD))
-      return std::numeric_limits<double>::infinity();
-    const double inv = 1.0 / (2.0 * aD), en = 13.0 * eps * N_star + 1e-240;
-    const double cmax = std::max(std::max(std::fabs(center.x), std::fabs(center.y)), std::fabs(center.z));
-    return 2.0 * ((en + (N_star + en) * (eD / Dl)) * inv + 1.01 * eps * (1.01 * N_star * inv + cmax));
-  };
+  auto in_range = [](double m) { return int(m > kFilterMagMin) & int(m < kFilterMagMax); };
+  CircumFilter f;
+  const Vec3 u = b - a, v = c - a, w = d - a;
+  const Vec3 au = fabs3(u), av = fabs3(v), aw = fabs3(w);
+  const Vec3 vw = cross(v, w), wu = cross(w, u), uv = cross(u, v);
+  const Vec3 avw = acr(av, aw), awu = acr(aw, au), auv = acr(au, av);
+  const double nu = dot(u, u), nv = dot(v, v), nw = dot(w, w);
+  double mag[4];
+  f.val[1] = nu * dot(vw, vw) + nv * dot(wu, vw) + nw * dot(uv, vw);
+  mag[1] = nu * dot(avw, avw) + nv * dot(awu, avw) + nw * dot(auv, avw);
+  f.val[2] = nv * dot(wu, wu) + nw * dot(uv, wu) + nu * dot(vw, wu);
+  mag[2] = nv * dot(awu, awu) + nw * dot(auv, awu) + nu * dot(avw, awu);
+  f.val[3] = nw * dot(uv, uv) + nu * dot(vw, uv) + nv * dot(wu, uv);
+  mag[3] = nw * dot(auv, auv) + nu * dot(avw, auv) + nv * dot(awu, auv);
+  const double D = dot(u, vw), PD = dot(au, avw);
+  f.val[0] = 2.0 * D * D - (f.val[1] + f.val[2] + f.val[3]);
+  mag[0] = PD * PD;
+  for (int i = 1; i < 4; ++i) f.bound[i] = 64.0 * kEps * mag[i];
+  f.bound[0] = 128.0 * kEps * (std::fabs(f.val[0]) + mag[0] + mag[1] + mag[2] + mag[3]);
+  for (int i = 0; i < 4; ++i) f.range[i] = in_range(mag[i]);
+  // Doubles only (not decisions): c - a = n / (2D), lambda_i = val_i / (2 D^2).
+  const Vec3 n = nu * vw + nv * wu + nw * uv;
+  const Vec3 q = n / (2.0 * D);
+  f.center = a + q;
+  f.D = D;
+  f.PD = PD;
+  // N* >= every coordinate of n's tree on absolute values.
+  f.N_star = (nu + nv + nw) * ((avw.x + avw.y + avw.z) + (awu.x + awu.y + awu.z) + (auv.x + auv.y + auv.z));
+  const double inv = 1.0 / (2.0 * D * D);
+  for (int i = 1; i < 4; ++i) lambda[i] = f.val[i] * inv;
+  lambda[0] = 1.0 - lambda[1] - lambda[2] - lambda[3];
+  return f;
+}
+
+// L9c: with e_D = 9 eps P_D, e_n = 13 eps N* (N* bounding every coordinate
+// of n's tree on absolute values, so |n~_k| <= N* too) and Dl = |D~| - e_D > 0,
+//   |c~_k - c_k| <= (e_n + (N* + e_n) e_D / Dl) / (2 |D~|) + 1.01 eps (|q~_k| + |c~_k|),
+// |q~_k| <= 1.01 N* / (2 |D~|); doubled for the rounding of the bound itself.
+// Magnitudes are kept in (kCentreMagMin, kCentreMagMax), and Dl above half
+// of |D~| (near-flat tets get no bound). Out of line, on scalars: inlined
+// into the filter it cost ~20 more instructions per tet (callgrind), the
+// filter's temporaries then being spilled around it.
+[[gnu::noinline]] double centre_error(double D, double PD, double N_star, Point3 center) {
+  const double eD = 9.0 * kEps * PD + kDetUnderflow, aD = std::fabs(D), Dl = aD - eD;
+  if (!(PD > kCentreMagMin && PD < kCentreMagMax && N_star < kCentreMagMax && Dl > 0.5 * aD))
+    return std::numeric_limits<double>::infinity();
+  const double inv = 1.0 / (2.0 * aD), en = 13.0 * kEps * N_star + kNumUnderflow;
+  const double cmax = std::max(std::max(std::fabs(center.x), std::fabs(center.y)), std::fabs(center.z));
+  return 2.0 * ((en + (N_star + en) * (eD / Dl)) * inv + 1.01 * kEps * (1.01 * N_star * inv + cmax));
+}
+double centre_error(const CircumFilter& f) { return centre_error(f.D, f.PD, f.N_star, f.center); }
+
+[[gnu::always_inline]] inline bool decided(const CircumFilter& f, int i) {
+  return ((int(f.val[i] > f.bound[i]) | int(f.val[i] < -f.bound[i])) & f.range[i]) != 0;
+}
+}  // namespace
+
+Point3 circumcenter_with_signs(const Point3& a, const Point3& b, const Point3& c, const Point3& d, Sign out[4],
+                               double lambda[4], double* error) {
+  const CircumFilter f = circum_filter(a, b, c, d, lambda);
   // Each sign is a coin toss (is the circumcentre beyond this face?): taken as
   // the difference of two comparisons, with one branch for "all four decided".
-  int decided = 1;
+  int all_decided = 1;
   for (int i = 0; i < 4; ++i) {
-    const int pos = val[i] > bound[i], neg = val[i] < -bound[i];
-    decided &= (pos | neg) & range[i];
+    const int pos = f.val[i] > f.bound[i], neg = f.val[i] < -f.bound[i];
+    all_decided &= (pos | neg) & f.range[i];
     out[i] = static_cast<Sign>(pos - neg);
   }
-  if (decided) [[likely]] {
+  if (all_decided) [[likely]] {
+    // The centre's bound is computed only for a well-centred tet (the only
+    // ones whose centres are compared).
     if (error)
       *error = (int(out[0] != Sign::Negative) & int(out[1] != Sign::Negative) & int(out[2] != Sign::Negative) &
                 int(out[3] != Sign::Negative))
-                   ? centre_error()
+                   ? centre_error(f)
                    : std::numeric_limits<double>::infinity();
-    return center;
+    return f.center;
   }
+  // Orientation-preserving orders that bring each vertex to slot 1 of
+  // circ_bary_numerator: a -> (b,a,d,c), b -> (a,b,c,d), c -> (a,c,d,b), d -> (a,d,b,c).
+  const Point3* p[4] = {&a, &b, &c, &d};
+  static constexpr int perm[4][4] = {{1, 0, 3, 2}, {0, 1, 2, 3}, {0, 2, 3, 1}, {0, 3, 1, 2}};
   for (int i = 0; i < 4; ++i) {
-    if (((int(val[i] > bound[i]) | int(val[i] < -bound[i])) & range[i]) != 0) continue;  // decided above
+    if (decided(f, i)) continue;
     const auto& q = perm[i];
     out[i] = filtered_sign(
         [&](auto zero) {
           using NT = decltype(zero);
           return circ_bary_numerator<NT>(*p[q[0]], *p[q[1]], *p[q[2]], *p[q[3]]);
         },
-        cnt.circ_exact);
+        predicate_counters().circ_exact);
   }
-  if (error) *error = centre_error();
-  return center;
+  if (error) *error = centre_error(f);
+  return f.center;
 }
 
 void triangle_circumcenter_barycentric_signs(const Point3& a, const Point3& b, const Point3& c,
