@@ -242,8 +242,10 @@ TEST(CliOptions, JsonOrText) {
   const std::string json = convert_json("--optimize none", "j.vtu");
   EXPECT_EQ(jq(json, "d['output']['format']"), "vtu");
   EXPECT_EQ(jq(json, "sorted(d['seconds'].keys()) == sorted(['read', 'classify', 'dual', 'star_test', 'write', "
-                     "'total'])"),
+                     "'total', 'stages'])"),
             "True");
+  EXPECT_EQ(jq(json, "list(d['seconds']['stages'].keys())"),
+            "['read', 'classify', 'dual', 'cleanup', 'cells', 'check', 'write']");
   CmdResult chk = run("check " + out + " --json");
   ASSERT_EQ(chk.code, 0) << chk.err;
   EXPECT_EQ(jnum(chk.out, "d['cells']"), jnum(json, "d['cells']"));

@@ -57,7 +57,7 @@ TEST(Pipeline, ConvertIsTheCompositionOfTheStages) {
   params.optim.method = OptimParams::Method::None;
   std::vector<std::string> observed;
   const ConvertResult r = convert(soup, params, ConvertHooks{[&](const StageRecord& s) { observed.push_back(s.name); }, {}});
-  EXPECT_EQ(stage_names(r.report), (std::vector<std::string>{"classify", "dual", "check"}));
+  EXPECT_EQ(stage_names(r.report), (std::vector<std::string>{"classify", "dual", "cleanup", "cells", "check"}));
   EXPECT_EQ(observed, stage_names(r.report));
 
   // The same stages called one by one give the same mesh and verdicts.
@@ -83,7 +83,7 @@ TEST(Pipeline, OptimiseStageRunsAndIsChecked) {
   PipelineParams params;
   params.optim.max_iter = 3;
   const ConvertResult r = convert(soup, params);
-  EXPECT_EQ(stage_names(r.report), (std::vector<std::string>{"classify", "dual", "check", "optimize", "check_after"}));
+  EXPECT_EQ(stage_names(r.report), (std::vector<std::string>{"classify", "dual", "cleanup", "cells", "check", "optimize", "check_after"}));
   ASSERT_NE(r.report.stage("optimize"), nullptr);
   EXPECT_NE(r.report.stage("optimize")->stats.find("iterations"), nullptr);
   // The final check is of the optimised mesh.
@@ -111,16 +111,16 @@ TEST(Pipeline, BadParamsAreRefusedBeforeAnyWork) {
   };
   PipelineParams p;
   p.classify.feature_angle_deg = 0;
-  refused(p, "feature angle");
+  refused(p, "feature_angle_deg");
   p = PipelineParams{};
   p.dual.collapse_tolerance = 0.7;
-  refused(p, "collapse");
+  refused(p, "collapse_tolerance");
   p = PipelineParams{};
   p.optim.max_iter = -1;
   refused(p, "max_iter");
   p = PipelineParams{};
   p.optim.c = 0;
-  refused(p, "c = ");
+  refused(p, "OptimParams::c ");
 }
 
 TEST(Pipeline, ConvertFileReadsAndWrites) {
@@ -130,7 +130,7 @@ TEST(Pipeline, ConvertFileReadsAndWrites) {
   PipelineParams params;
   params.optim.method = OptimParams::Method::None;
   const ConvertResult r = convert_file(in, (d / "c.vtu").string(), PolyFormat::Vtu, params);
-  EXPECT_EQ(stage_names(r.report), (std::vector<std::string>{"read", "classify", "dual", "check", "write"}));
+  EXPECT_EQ(stage_names(r.report), (std::vector<std::string>{"read", "classify", "dual", "cleanup", "cells", "check", "write"}));
   EXPECT_EQ(r.written.find("format")->dump(0), "\"vtu\"");
   const PolyMesh back = read_vtu_poly((d / "c.vtu").string());
   EXPECT_EQ(back.num_cells(), r.mesh.num_cells());

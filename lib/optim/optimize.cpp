@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "core/interrupt.h"
+#include "core/param_range.h"
 #include "optim/context.h"
 #include "quality/star_verdict.h"
 
@@ -126,25 +127,18 @@ Json OptimReport::to_json() const {
   return j;
 }
 
-namespace {
-template <class T>
-void require_range(const char* field, T v, T lo, T hi, const char* unit) {
-  if (!(v >= lo && v <= hi))
-    throw UsageError(std::string("optimiser parameter ") + field + " = " + std::to_string(v) + " is outside [" +
-                     std::to_string(lo) + ", " + std::to_string(hi) + "]" + (*unit ? " " : "") + unit);
-}
-}  // namespace
 
 void OptimParams::validate() const {
-  require_range("max_iter", max_iter, 0, kMaxIterLimit, "iterations");
-  require_range("tol", tol, 0.0, kMaxTol, "(relative objective change)");
-  require_range("c", c, kMinDeltaC, kMaxDeltaC, "(eq. 3)");
-  require_range("newton_steps", newton_steps, 1, kMaxNewtonSteps, "steps per visit");
-  require_range("settle_move", settle_move, 0.0, 1.0, "(relative to cbrt(V0))");
-  require_range("untangle_sweeps", untangle_sweeps, 0, kMaxUntangleSweeps, "sweeps");
-  require_range("max_halvings", max_halvings, 0, kMaxHalvings, "halvings");
-  require_range("fd_step", fd_step, 1e-12, kMaxFdStep, "(relative to cbrt(V0))");
-  require_range("global_iterations_per_round", global_iterations_per_round, 1, kMaxIterLimit, "iterations");
+  check_param("OptimParams::max_iter", "iterations", {0, double(kMaxIterLimit)}, max_iter);
+  check_param("OptimParams::tol", "relative objective change", {0, kMaxTol}, tol);
+  check_param("OptimParams::c", "eq. 3", {kMinDeltaC, kMaxDeltaC}, c);
+  check_param("OptimParams::newton_steps", "steps per visit", {1, double(kMaxNewtonSteps)}, newton_steps);
+  check_param("OptimParams::settle_move", "relative to cbrt(V0)", {0, 1}, settle_move);
+  check_param("OptimParams::untangle_sweeps", "sweeps", {0, double(kMaxUntangleSweeps)}, untangle_sweeps);
+  check_param("OptimParams::max_halvings", "halvings", {0, double(kMaxHalvings)}, max_halvings);
+  check_param("OptimParams::fd_step", "relative to cbrt(V0)", {0, kMaxFdStep, true}, fd_step);
+  check_param("OptimParams::global_iterations_per_round", "iterations", {1, double(kMaxIterLimit)},
+              global_iterations_per_round);
 }
 
 Json OptimParams::to_json() const {

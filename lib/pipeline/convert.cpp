@@ -30,17 +30,25 @@ void run_pipeline(ConvertResult& r, const TetSoup& soup, const PipelineParams& p
   r.primal = run_stage(rep, hooks, "classify", [&](Json& stats) {
     ClassifyStats st;
     ClassifiedTetMesh m = classify(soup, params.classify, &st);
-    stats = Json::object();
-    stats.set("validate", st.seconds_validate);
-    stats.set("order", st.seconds_order);
-    stats.set("topology", st.seconds_topology);
-    stats.set("classification", st.seconds_classification);
+    stats = st.to_json();
     return m;
   });
-  r.mesh = run_stage(rep, hooks, "dual", [&](Json& stats) {
-    DualStats st;
-    PolyMesh pm = build_dual(r.primal, params.dual, &st);
-    stats = st.to_json();
+  // Algorithm 1 as three stages (design §4): the draft (steps 1-7 and the
+  // cleanup's hints), the cleanup (§2.8), the cells (step 8).
+  DualStats dual_stats;
+  DualDraft draft = run_stage(rep, hooks, "dual", [&](Json& stats) {
+    DualDraft d = build_dual_draft(r.primal, params.dual, &dual_stats);
+    stats = dual_stats.to_json();
+    return d;
+  });
+  run_stage(rep, hooks, "cleanup", [&](Json& stats) {
+    stats = cleanup_dual(draft).to_json();
+    return 0;
+  });
+  r.mesh = run_stage(rep, hooks, "cells", [&](Json& stats) {
+    PolyMesh pm = assemble_cells(std::move(draft));
+    stats = Json::object();
+    stats.set("cells", pm.num_cells());
     return pm;
   });
   const bool optimise = params.optim.method != OptimParams::Method::None;

@@ -1,28 +1,12 @@
 #include "pipeline/params.h"
 
-#include <cmath>
-#include <string>
-
-#include "core/error.h"
 
 namespace polydual {
 
-namespace {
-// ClassifyParams and DualParams ranges (their headers document the fields).
-void validate_classify(const ClassifyParams& p) {
-  if (!(p.feature_angle_deg > 0 && p.feature_angle_deg <= 180))
-    throw UsageError("feature angle " + std::to_string(p.feature_angle_deg) + " degrees is outside (0, 180]");
-}
-void validate_dual(const DualParams& p) {
-  if (!(p.collapse_tolerance >= 0 && p.collapse_tolerance <= 0.5))
-    throw UsageError("collapse tolerance " + std::to_string(p.collapse_tolerance) +
-                     " (relative to the mean primal edge) is outside [0, 0.5]");
-}
-}  // namespace
 
 void PipelineParams::validate() const {
-  validate_classify(classify);
-  validate_dual(dual);
+  classify.validate();
+  dual.validate();
   optim.validate();
 }
 
@@ -36,6 +20,8 @@ Json PipelineParams::to_json() const {
   j.set("metric", optim.metric == Metric::Q1 ? "q1" : "q2");
   j.set("derivatives", derivatives_name(optim.derivatives));
   j.set("max_iter", optim.max_iter);
+  j.set("classifier", classify.to_json());
+  j.set("dual_params", dual.to_json());
   j.set("optimizer", optim.to_json());
   return j;
 }

@@ -14,7 +14,13 @@ constexpr std::size_t kWhereLimit = 200;
 constexpr const char* kClassNames[4] = {"model_vertex", "model_edge", "model_face", "interior"};
 
 const char* face_kind_name(const ModelEntity& f) {
-  return f.regions.size() < 2 ? "external" : (f.regions[0] == f.regions[1] ? "fracture" : "interface");
+  switch (face_kind(f)) {
+    case FaceKind::External: return "external";
+    case FaceKind::Interface: return "interface";
+    case FaceKind::Fracture: return "fracture";
+    case FaceKind::Interior: break;
+  }
+  return "interior";
 }
 
 Json xyz_json(const Point3& p) {
@@ -88,6 +94,40 @@ Json materials_json(const PolyMesh& pm, const ValidationReport& rep, const Class
     mats.push(o);
   }
   return mats;
+}
+
+// The dual's record: the draft's stats with the cleanup's counts.
+Json dual_summary(const ConvertReport& report) {
+  const StageRecord* dual = report.stage("dual");
+  const StageRecord* cleanup = report.stage("cleanup");
+  if (!dual) return Json();
+  Json j = dual->stats;
+  if (cleanup)
+    for (const char* k : {"merged_points", "collapsed_points", "dropped_faces"})
+      if (const Json* v = cleanup->stats.find(k)) j.set(k, *v);
+  if (Json* sec = j.find("seconds"))
+    for (const char* part : {"cleanup", "cells"})
+      if (const StageRecord* p = report.stage(part)) sec->set(part, p->seconds);
+  return j;
+}
+
+// Seconds per stage; "dual" is the whole of Algorithm 1 (draft, cleanup,
+// cells), "star_test" the first check, as the summaries always reported.
+Json seconds_summary(const ConvertReport& report) {
+  Json seconds = Json::object();
+  for (const StageRecord& s : report.stages) {
+    if (s.name == "cleanup" || s.name == "cells") continue;
+    double t = s.seconds;
+    if (s.name == "dual")
+      for (const char* part : {"cleanup", "cells"})
+        if (const StageRecord* p = report.stage(part)) t += p->seconds;
+    seconds.set(s.name == "check" ? "star_test" : s.name, t);
+  }
+  seconds.set("total", report.seconds);
+  Json stages = Json::object();
+  for (const StageRecord& s : report.stages) stages.set(s.name, s.seconds);
+  seconds.set("stages", stages);
+  return seconds;
 }
 
 }  // namespace
@@ -166,16 +206,11 @@ Json convert_summary(const ConvertResult& r, const PipelineParams& params) {
     star.set("exact_fallbacks", *first_check->stats.find("exact_fallbacks"));
   }
   j.set("star_test", star);
-  const StageRecord* dual = r.report.stage("dual");
-  j.set("dual", dual ? dual->stats : Json());
+  j.set("dual", dual_summary(r.report));
   const StageRecord* opt = r.report.stage("optimize");
   j.set("optimize", opt ? opt->stats : Json());
   j.set("params", params.to_json());
-  Json seconds = Json::object();
-  for (const StageRecord& s : r.report.stages)
-    seconds.set(s.name == "check" ? "star_test" : s.name, s.seconds);
-  seconds.set("total", r.report.seconds);
-  j.set("seconds", seconds);
+  j.set("seconds", seconds_summary(r.report));
   return j;
 }
 
