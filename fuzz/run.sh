@@ -24,7 +24,8 @@ seeds() {  # seeds <format>: fills $work/corpus_<format>
   case "$1" in
     msh) cp "$data"/*.msh "$dir"/ ;;
     medit) cp "$data"/*.mesh "$dir"/ ;;
-    vtu) cp "$data"/*.vtu "$dir"/ ;;
+    vtu) cp "$data"/cube5*.vtu "$dir"/ ;;
+    vtu_poly) cp "$data"/poly_*.vtu "$dir"/ ;;
     tetgen)
       { cat "$data/cube5.node"; printf '\0'; cat "$data/cube5.ele"; printf '\0'; cat "$data/cube5.face"; } \
         > "$dir/cube5"
@@ -33,7 +34,7 @@ seeds() {  # seeds <format>: fills $work/corpus_<format>
 }
 
 status=0
-for format in msh medit tetgen vtu; do
+for format in msh medit tetgen vtu vtu_poly; do
   seeds "$format"
   mkdir -p "$work/artifacts_$format"
   echo "== fuzz_$format for ${seconds}s"

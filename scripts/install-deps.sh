@@ -4,7 +4,7 @@
 set -euo pipefail
 PKGS=(build-essential cmake ccache pkg-config
       libcgal-dev libgmp-dev libmpfr-dev libboost-dev libeigen3-dev libtbb-dev
-      libceres-dev libgtest-dev libgmock-dev libbenchmark-dev
+      libceres-dev zlib1g-dev libgtest-dev libgmock-dev libbenchmark-dev
       gmsh libgmsh-dev
       clang-14 libclang-rt-14-dev
       python3 python3-vtk9 python3-matplotlib python3-numpy python3-meshio xvfb xauth time

@@ -226,6 +226,129 @@ TEST(VtuPoly, ReaderErrorsNameTheFile) {
   EXPECT_THROW(read_vtu_poly((p.parent_path() / "missing.vtu").string()), InputError);
 }
 
+// Every writer option: ascii; inline base64 and appended raw, each
+// uncompressed and zlib at levels 1 and 9.
+std::vector<std::pair<std::string, VtuOptions>> every_vtu_option() {
+  std::vector<std::pair<std::string, VtuOptions>> out{{"ascii", VtuOptions{}}};
+  for (int level : {0, 1, 9}) {
+    out.push_back({"binary_z" + std::to_string(level), VtuOptions{true, false, level}});
+    out.push_back({"appended_z" + std::to_string(level), VtuOptions{false, true, level}});
+  }
+  return out;
+}
+
+TEST(VtuPoly, RoundTripEveryWriterOption) {
+  for (const auto& [name, options] : every_vtu_option())
+    for (const PolyMesh& m : {unit_cube(), two_materials(), block8(), cube_with_slit(), cube_with_spur(), PolyMesh{}}) {
+      SCOPED_TRACE(name);
+      const fs::path p = scratch(name + ".vtu");
+      write_vtu_poly(m, p.string(), {{"q", std::vector<double>(m.num_cells(), 0.5)}}, options);
+      expect_same_mesh(m, read_vtu_poly(p.string()));
+      const std::string s = slurp(p);
+      EXPECT_EQ(s.find("<AppendedData encoding=\"raw\">") != std::string::npos, options.appended);
+      EXPECT_EQ(s.find("compressor=\"vtkZLibDataCompressor\"") != std::string::npos, options.zlib_level > 0);
+      EXPECT_EQ(s.find("format=\"binary\"") != std::string::npos, options.binary && !options.appended);
+    }
+}
+
+TEST(VtuPoly, CompressionShrinksAndLevelsDiffer) {
+  const PolyMesh m = hex_block(6, 6, 6, std::vector<std::int32_t>(216, 1));
+  auto size_of = [&](const VtuOptions& o) {
+    const fs::path p = scratch("size.vtu");
+    write_vtu_poly(m, p.string(), {}, o);
+    return fs::file_size(p);
+  };
+  const auto raw = size_of({false, true, 0}), z1 = size_of({false, true, 1}), z9 = size_of({false, true, 9});
+  EXPECT_LT(z9, raw / 3);
+  EXPECT_LE(z9, z1);
+  EXPECT_LT(size_of({true, false, 9}), size_of({true, false, 0}) / 3);
+}
+
+// The bytes of the default options (ascii, and the binary the command writes)
+// are pinned: tests/data/poly_twomat_{ascii,binary}.vtu were written before
+// the appended/zlib options existed.
+TEST(VtuPoly, DefaultOptionsBytesUnchanged) {
+  const std::vector<CellField> extra{{"valid", std::vector<std::int32_t>{1, 0}}, {"bad_tets", std::vector<std::int32_t>{0, 3}}};
+  for (bool binary : {false, true}) {
+    const fs::path p = scratch("pinned.vtu");
+    write_vtu_poly(two_materials(), p.string(), extra, VtuOptions{binary});
+    EXPECT_EQ(slurp(p), slurp(fs::path(POLYDUAL_TEST_DATA) / (binary ? "poly_twomat_binary.vtu" : "poly_twomat_ascii.vtu")))
+        << (binary ? "binary" : "ascii");
+  }
+}
+
+TEST(VtuPoly, BadOptionsAreUsageErrors) {
+  const fs::path p = scratch("opt.vtu");
+  EXPECT_THROW(write_vtu_poly(unit_cube(), p.string(), {}, VtuOptions{false, false, 6}), UsageError);
+  EXPECT_THROW(write_vtu_poly(unit_cube(), p.string(), {}, VtuOptions{true, false, 10}), UsageError);
+  EXPECT_THROW(write_vtu_poly(unit_cube(), p.string(), {}, VtuOptions{false, true, -1}), UsageError);
+  EXPECT_FALSE(fs::exists(p));
+}
+
+TEST(VtuPoly, DeterministicBytesEveryOption) {
+  for (const auto& [name, options] : every_vtu_option()) {
+    const fs::path a = scratch("a.vtu"), b = scratch("b.vtu");
+    write_vtu_poly(block8(), a.string(), {}, options);
+    write_vtu_poly(block8(), b.string(), {}, options);
+    EXPECT_EQ(slurp(a), slurp(b)) << name;
+  }
+}
+
+// Every prefix of a file of each option is an InputError, never a crash.
+TEST(VtuPoly, EveryTruncationIsAnInputError) {
+  for (const auto& [name, options] : every_vtu_option()) {
+    const fs::path p = scratch("cut.vtu");
+    write_vtu_poly(cube_with_slit(), p.string(), {}, options);
+    const std::string s = slurp(p);
+    const std::size_t end = s.rfind("</VTKFile>");
+    for (std::size_t n = 0; n < end; ++n)
+      EXPECT_THROW(read_vtu_poly_bytes(std::string_view(s).substr(0, n), "cut.vtu"), InputError) << name << " " << n;
+  }
+}
+
+TEST(VtuPoly, ValuesOutOfRangeAreInputErrors) {
+  const fs::path p = scratch("range.vtu");
+  write_vtu_poly(unit_cube(), p.string());
+  const std::string s = slurp(p);
+  auto error_after = [&](const std::string& array, const std::string& from, const std::string& to) {
+    std::string bad = s;
+    const std::size_t at = bad.find(from, bad.find("Name=\"" + array + "\""));
+    bad.replace(at, from.size(), to);
+    try {
+      read_vtu_poly_bytes(bad, "range.vtu");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  };
+  EXPECT_NE(error_after("class_dim", ">\n          0", ">\n          7").find("DataArray 'class_dim': value 7 at index 0 out of range (-1..3)"),
+            std::string::npos);
+  EXPECT_NE(error_after("material", ">\n          4", ">\n          4294967296")
+                .find("DataArray 'material': value out of range of Int32 (4294967296)"),
+            std::string::npos);
+  EXPECT_NE(error_after("primal_vertex", ">\n          0", ">\n          4294967296")
+                .find("DataArray 'primal_vertex': value 4294967296 at index 0 out of range (-1..2147483647)"),
+            std::string::npos);
+  EXPECT_NE(error_after("face_kind", ">\n          1", ">\n          9").find("DataArray 'face_kind': value 9"),
+            std::string::npos);
+}
+
+// Inputs that once crashed or hung the poly reader (fuzz/regressions/vtu_poly_*)
+// are read again: an InputError or a mesh, nothing else.
+TEST(VtuPoly, FuzzRegressionsReplay) {
+  const fs::path dir = fs::path(POLYDUAL_SOURCE_DIR) / "fuzz" / "regressions";
+  std::size_t n = 0;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    if (entry.path().filename().string().rfind("vtu_poly_", 0) != 0) continue;
+    ++n;
+    try {
+      read_vtu_poly(entry.path().string());
+    } catch (const InputError&) {
+    }
+  }
+  RecordProperty("replayed", static_cast<int>(n));
+}
+
 // ---- OpenFOAM ------------------------------------------------------------------
 
 // The entries of an OpenFOAM list file (labels or "n(...)" faces), one per line.

@@ -5,7 +5,6 @@
 namespace convert_mesh_example {
 
 // Names the entry so the header is used, not only parsed.
-polydual::ConvertResult (*const convert_entry)(const polydual::TetSoup&, const polydual::PipelineParams&,
-                                               const polydual::StageObserver&) = &polydual::convert;
+[[maybe_unused]] const auto convert_entry = &polydual::convert;
 
 }  // namespace convert_mesh_example

@@ -18,7 +18,7 @@ const CommandSpec kConvert{
     "every cell with the exact star-shaped test, untangles and smooths it, and writes\n"
     "VTU (VTK_POLYHEDRON) or an OpenFOAM case directory (OUT/constant/polyMesh).",
     1, 1,
-    {"-o", "--format", "--feature-angle", "--no-cleanup", "--collapse-tol", "--optimize", "--metric",
+    {"-o", "--format", "--force", "--vtu-encoding", "--zlib", "--feature-angle", "--no-cleanup", "--collapse-tol", "--optimize", "--metric",
      "--derivatives", "--max-iter", "--threads", "--json", "--quiet"}};
 
 const CommandSpec kCheck{
@@ -31,7 +31,10 @@ const CommandSpec kCheck{
 int cmd_convert(const Settings& s) {
   if (s.out.empty()) throw UsageError("convert needs -o OUT");
   const PolyFormat format = poly_format_for(s.format, s.out);
-  const ConvertResult r = convert_file(s.positional[0], s.out, format, s.params);
+  ProgressPrinter progress(s.quiet);
+  const ConvertResult r = convert_file(s.positional[0], s.out, format, s.params, progress.hooks(), s.write);
+  progress.end_line();
+  print_warnings(r.warnings, s.quiet);
   const Json summary = convert_summary(r, s.params);
   if (s.json) print_json(summary);
   else print_convert_summary(summary);

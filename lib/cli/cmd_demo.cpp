@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "cli/commands.h"
+#include "cli/print.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/stopwatch.h"
@@ -21,7 +22,7 @@ const CommandSpec kDemo{
     "DIR/<domain>.msh, DIR/<domain>.vtu, DIR/<domain>_case/ (OpenFOAM) and\n"
     "DIR/summary.json, re-checks every written VTU and prints a summary.",
     0, 0,
-    {"--out", "--tets=20000", "--domains", "--optimize", "--threads"}};
+    {"--out", "--tets=20000", "--domains", "--optimize", "--threads", "--quiet"}};
 
 namespace {
 
@@ -45,9 +46,11 @@ Json run_domain(Domain d, const Settings& s, const std::filesystem::path& dir) {
   const std::string msh = (dir / (name + ".msh")).string(), vtu = (dir / (name + ".vtu")).string();
   write_domain_msh(d, static_cast<std::size_t>(s.tets), msh);
   const double gen = clock.seconds();
-  const ConvertResult r = convert_file(msh, vtu, PolyFormat::Vtu, s.params);
+  ProgressPrinter progress(s.quiet);
+  const ConvertResult r = convert_file(msh, vtu, PolyFormat::Vtu, s.params, progress.hooks(), s.write);
+  progress.end_line();
   Json j = convert_summary(r, s.params);
-  j.set("foam", write_poly_mesh(r.mesh, (dir / (name + "_case")).string(), PolyFormat::Foam));
+  j.set("foam", write_poly_mesh(r.mesh, (dir / (name + "_case")).string(), PolyFormat::Foam, {}, s.write));
   const PolyMesh back = read_vtu_poly(vtu);
   const Json chk = mesh_summary(back, check_mesh(back, nullptr), nullptr);
   j.set("domain", name);

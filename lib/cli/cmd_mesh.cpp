@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "core/stopwatch.h"
 #include "generate/domains.h"
+#include "io/output_guard.h"
 #include "io/read_tet_mesh.h"
 #include "io/write_tet_mesh.h"
 #include "pipeline/summary.h"
@@ -25,11 +26,12 @@ const CommandSpec kInfo{
     "info", "info FILE [--json] [--feature-angle DEG]",
     "Reads and classifies a tet mesh; prints its size and its geometric model.",
     1, 1,
-    {"--feature-angle", "--json"}};
+    {"--feature-angle", "--json", "--quiet"}};
 
 int cmd_generate(const Settings& s) {
   const Domain d = parse_domain(s.positional[0]);
   if (s.out.empty()) throw UsageError("generate needs -o FILE");
+  check_output_target({}, s.out, OutputKind::File, false);
   const Stopwatch clock;
   const auto n = static_cast<std::size_t>(s.tets);
   if (std::filesystem::path(s.out).extension() == ".msh") write_domain_msh(d, n, s.out);
@@ -62,6 +64,7 @@ int cmd_info(const Settings& s) {
   Stopwatch clock;
   const TetSoup soup = read_tet_mesh(path);
   seconds.set("read", clock.seconds());
+  print_warnings(soup.warnings, s.quiet);
   clock = Stopwatch();
   const ClassifiedTetMesh m = classify(soup, s.params.classify);
   seconds.set("classify", clock.seconds());
@@ -72,6 +75,7 @@ int cmd_info(const Settings& s) {
   j.set("vertices", m.num_vertices());
   j.set("triangles", m.num_triangles());
   j.set("edges", m.num_edges());
+  j.set("ignored", ignored_summary(soup.ignored));
   j.set("model", model);
   Json params = Json::object();
   params.set("feature_angle_deg", s.params.classify.feature_angle_deg);

@@ -8,6 +8,7 @@
 #include "cli/print.h"
 #include "core/error.h"
 #include "core/stopwatch.h"
+#include "io/output_guard.h"
 #include "io/read_tet_mesh.h"
 #include "io/vtu_poly_reader.h"
 #include "pipeline/convert.h"
@@ -19,14 +20,17 @@ const CommandSpec kOptimize{
     "optimize", "optimize IN.vtu -o OUT.vtu [options]",
     "Untangles and smooths a polyhedral mesh written by polydual (paper §3.3).",
     1, 1,
-    {"-o", "--primal", "--feature-angle", "--optimize", "--metric", "--derivatives", "--max-iter", "--threads",
-     "--json"}};
+    {"-o", "--vtu-encoding", "--zlib", "--primal", "--feature-angle", "--optimize", "--metric", "--derivatives", "--max-iter", "--threads",
+     "--json", "--quiet"}};
 
 int cmd_optimize(const Settings& s) {
   if (s.out.empty()) throw UsageError("optimize needs -o OUT.vtu");
   const PolyFormat format = poly_format_for("", s.out);
   if (format != PolyFormat::Vtu) throw UsageError("optimize writes a .vtu file, not '" + s.out + "'");
   s.params.validate();
+  std::vector<std::string> inputs{s.positional[0]};
+  if (!s.primal.empty()) inputs.push_back(s.primal);
+  check_output_target(inputs, s.out, OutputKind::File, false, ".vtu");
   Json seconds = Json::object();
   Stopwatch clock;
   PolyMesh pm = read_vtu_poly(s.positional[0]);
@@ -38,9 +42,11 @@ int cmd_optimize(const Settings& s) {
     seconds.set("primal", clock.seconds());
   }
   clock = Stopwatch();
-  const OptimizeResult r = optimize_mesh(pm, primal.get(), s.params.optim);
+  ProgressPrinter progress(s.quiet);
+  const OptimizeResult r = optimize_mesh(pm, primal.get(), s.params.optim, progress.progress());
+  progress.end_line();
   seconds.set("optimize", clock.seconds());
-  const Json w = write_poly_mesh(pm, s.out, format, verdict_fields(r.check.verdicts));
+  const Json w = write_poly_mesh(pm, s.out, format, verdict_fields(r.check.verdicts), s.write);
   Json j = mesh_summary(pm, r.check, nullptr);
   j.set("input", s.positional[0]);
   j.set("output", w);

@@ -11,6 +11,7 @@
 
 #include "cli/commands.h"
 #include "core/error.h"
+#include "core/interrupt.h"
 
 using namespace polydual;
 using namespace polydual::cli;
@@ -32,6 +33,7 @@ void usage(std::FILE* f) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  install_interrupt_handlers();
   if (argc < 2) { usage(stderr); return 2; }
   const std::string name = argv[1];
   if (name == "-h" || name == "--help" || name == "help") { usage(stdout); return 0; }
@@ -45,6 +47,9 @@ int main(int argc, char** argv) {
       if (s.threads > 0)
         threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, s.threads);
       return c.run(s);
+    } catch (const Interrupted& e) {  // the writers removed their temporaries
+      std::fprintf(stderr, "polydual %s: interrupted\n", name.c_str());
+      return e.exit_status();
     } catch (const UsageFailure& e) {
       std::fprintf(stderr, "polydual %s: usage error: %s\n", name.c_str(), e.what());
       return 2;

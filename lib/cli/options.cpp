@@ -29,7 +29,17 @@ const std::vector<OptionDef> kTable = {
      [](Settings& s, const std::string& v) { s.format = v; }},
     {"--force", K::Flag, "", kNoRange, kNoRange,
      "write an OpenFOAM case into an existing directory that is not a case", nullptr,
-     [](Settings& s, const std::string&) { s.force = true; }},
+     [](Settings& s, const std::string&) { s.write.foam.force = true; }},
+    {"--vtu-encoding", K::Choice, "base64|raw|ascii", kNoRange, kNoRange,
+     "VTU data arrays: base64 inline, raw appended binary (fastest to write and read), or ASCII text",
+     [](const Settings& d) { return std::string(d.write.vtu.appended ? "raw" : d.write.vtu.binary ? "base64" : "ascii"); },
+     [](Settings& s, const std::string& v) {
+       s.write.vtu.binary = v != "ascii";
+       s.write.vtu.appended = v == "raw";
+     }},
+    {"--zlib", K::Int, "LEVEL", 0, 9, "zlib compression of the VTU arrays (0: none; ParaView reads 1-9)",
+     [](const Settings& d) { return std::to_string(d.write.vtu.zlib_level); },
+     [](Settings& s, const std::string& v) { s.write.vtu.zlib_level = std::stoi(v); }},
     {"--feature-angle", K::Real, "DEG", 0, 180,
      "dihedral angle (degrees) above which inferred model faces split",
      [](const Settings& d) { return num(d.params.classify.feature_angle_deg); },

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "io/write_poly_mesh.h"
 #include "pipeline/params.h"
 
 namespace polydual::cli {
@@ -14,6 +15,7 @@ namespace polydual::cli {
 // Everything the flags of any subcommand can set.
 struct Settings {
   PipelineParams params;
+  PolyWriteOptions write;           // --vtu-encoding, --zlib, --force
   std::vector<std::string> positional;
   std::string out;                  // -o
   std::string format;               // --format ("" = from the output name)
@@ -22,7 +24,7 @@ struct Settings {
   std::string domains = "cube,twomat,fichera,fracture";
   long long tets = 0;               // --tets (0 = the command's default)
   int threads = 0;                  // --threads (0 = all cores)
-  bool json = false, quiet = false, force = false, help = false;
+  bool json = false, quiet = false, help = false;
 };
 
 enum class OptionKind { Flag, Int, Real, Choice, Text };

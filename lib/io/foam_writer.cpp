@@ -10,6 +10,8 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/interrupt.h"
+#include "io/output_guard.h"
 
 namespace polydual {
 
@@ -288,19 +290,49 @@ void write_system(const fs::path& dir) {
 
 }  // namespace
 
+namespace {
+
+// Creates `dir` and its missing ancestors; returns the ones it created,
+// outermost first, so a failed write can remove them again.
+std::vector<fs::path> create_missing_directories(const fs::path& dir) {
+  std::vector<fs::path> missing;
+  for (fs::path p = dir; !p.empty() && !fs::exists(fs::symlink_status(p)); p = p.parent_path())
+    missing.push_back(p);
+  std::vector<fs::path> created;
+  for (auto it = missing.rbegin(); it != missing.rend(); ++it) {
+    std::error_code ec;
+    if (fs::create_directory(*it, ec)) created.push_back(*it);
+    else if (ec) {
+      for (auto c = created.rbegin(); c != created.rend(); ++c) fs::remove(*c, ec);
+      throw WriteError(*it, "cannot create directory", ec);
+    }
+  }
+  return created;
+}
+
+}  // namespace
+
 FoamReport write_foam(const PolyMesh& mesh, const std::string& case_dir, const FoamOptions& options) {
   if (options.patch_type.empty() || options.patch_type.find_first_of(" ;{}\"") != std::string::npos)
     throw UsageError("write_foam: bad patch type '" + options.patch_type + "'");
+  check_case_directory(case_dir, options.force);
+  throw_if_interrupted();
   FoamReport report;
   const FoamCase fc = build_case(mesh, report);
-  write_directory_atomically(case_dir, [&](const fs::path& tmp) {
-    fs::create_directories(tmp / "constant" / "polyMesh");
-    write_poly_mesh(mesh, fc, tmp / "constant" / "polyMesh", options);
-    if (options.write_system) {
-      fs::create_directories(tmp / "system");
-      write_system(tmp / "system");
-    }
-  });
+  const fs::path dir(case_dir), poly = dir / "constant" / "polyMesh";
+  const bool had_mesh = fs::exists(fs::symlink_status(poly));
+  const std::vector<fs::path> created = create_missing_directories(dir / "constant");
+  try {
+    write_directory_atomically(poly, [&](const fs::path& tmp) { write_poly_mesh(mesh, fc, tmp, options); });
+    if (options.write_system) write_directory_if_absent(dir / "system", write_system);
+  } catch (...) {
+    // A case that did not exist is not left half made; an old polyMesh was
+    // either kept or replaced by the complete new one.
+    std::error_code ec;
+    if (!had_mesh) fs::remove_all(poly, ec);
+    for (auto c = created.rbegin(); c != created.rend(); ++c) fs::remove(*c, ec);  // empty ones only
+    throw;
+  }
   return report;
 }
 

@@ -1,6 +1,8 @@
 // OpenFOAM polyMesh writer (SPEC §9): CASE/constant/polyMesh/{points, faces,
 // owner, neighbour, boundary, cellZones, faceZones} plus, optionally, a minimal
-// CASE/system so OpenFOAM's tools (checkMesh) run on the case.
+// CASE/system so OpenFOAM's tools (checkMesh) run on the case. Only
+// constant/polyMesh is ever replaced; a user's 0/, system/, other files in
+// constant/ and anything else in CASE are left as they were (io/output_guard.h).
 //
 // OpenFOAM's rules, and what this writer does to meet them:
 //  - owner < neighbour on every internal face, the face normal pointing from
@@ -35,8 +37,12 @@ namespace polydual {
 struct FoamOptions {
   // OpenFOAM patch type of the external patches ("patch" or "wall").
   std::string patch_type = "patch";
-  // Also write system/{controlDict,fvSchemes,fvSolution} (OpenFOAM tools need them).
+  // Also write system/{controlDict,fvSchemes,fvSolution} (OpenFOAM tools need
+  // them) when the case has no system/ yet; an existing system/ is never touched.
   bool write_system = true;
+  // Write into an existing directory that is not a case (neither empty nor
+  // with constant/ or system/), leaving its files; refused otherwise.
+  bool force = false;
 };
 
 struct FoamReport {
@@ -49,10 +55,14 @@ struct FoamReport {
   Json to_json() const;
 };
 
-// Writes the case into `case_dir` atomically: the whole tree is built in a
-// temporary directory beside it and renamed into place, replacing an existing
-// `case_dir`; on any failure nothing is left behind and the error propagates.
-// Throws InputError("<memory>", "face N", ...) for a face without any cell.
+// Writes the case into `case_dir`: the new polyMesh is built in a temporary
+// directory inside case_dir/constant and swapped in for the old one (core/
+// atomic_file.h), then system/ is added if absent (also built aside and renamed
+// in). On any failure (WriteError, Interrupted) either the old or the new
+// polyMesh is complete, no temporary remains, and directories that this call
+// created are removed again; the error propagates.
+// Throws UsageError when `case_dir` may not be written (check_case_directory),
+// InputError("<memory>", "face N", ...) for a face without any cell.
 FoamReport write_foam(const PolyMesh& mesh, const std::string& case_dir,
                       const FoamOptions& options = {});
 

@@ -10,6 +10,7 @@
 #include "io/file_bytes.h"
 #include "io/record_checks.h"
 #include "io/text_cursor.h"
+#include "io/unattached.h"
 
 namespace polydual {
 namespace {
@@ -35,6 +36,74 @@ int skipped_record_size(const std::string& kw) {
 
 bool is_unsupported_volume(const std::string& kw) {
   return kw == "hexahedra" || kw == "prisms" || kw == "pyramids" || kw == "tetrahedrap2";
+}
+
+// CGAL Mesh_3's output_to_medit with show_patches = false (its default)
+// writes every boundary and interface triangle twice, with opposite
+// orientations: an interface triangle with the lower then the higher subdomain
+// on its sides as references, a boundary triangle twice with its inner
+// subdomain (CGAL replaces the outside, 0, by the other side). Recognised when
+// every triangle comes in such a pair (same vertices, opposite orientation,
+// references that are region tags): each pair becomes one triangle whose
+// model face is the pair of subdomains it separates, tagged 1, 2, ... in
+// increasing (lower, higher) order, (r, r) standing for r and the outside.
+struct SidedTriangle {
+  std::array<std::uint32_t, 3> sorted;
+  bool odd;  // the permutation sorting the written order is odd
+  std::uint32_t index;
+};
+
+std::vector<SidedTriangle> sided(const std::vector<TaggedTriangle>& triangles) {
+  std::vector<SidedTriangle> s(triangles.size());
+  for (std::size_t i = 0; i < triangles.size(); ++i) {
+    auto v = triangles[i].v;
+    bool odd = false;
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2 - a; ++b)
+        if (v[b] > v[b + 1]) std::swap(v[b], v[b + 1]), odd = !odd;
+    s[i] = {v, odd, std::uint32_t(i)};
+  }
+  std::sort(s.begin(), s.end(), [](const SidedTriangle& a, const SidedTriangle& b) {
+    return a.sorted != b.sorted ? a.sorted < b.sorted : a.index < b.index;
+  });
+  return s;
+}
+
+void merge_two_sided_triangles(TetSoup& soup) {
+  const std::size_t n = soup.triangles.size();
+  if (n == 0 || n % 2 != 0) return;
+  std::vector<std::int32_t> regions(soup.tet_region);
+  std::sort(regions.begin(), regions.end());
+  auto is_region = [&](std::int32_t r) { return std::binary_search(regions.begin(), regions.end(), r); };
+  const std::vector<SidedTriangle> s = sided(soup.triangles);
+  std::vector<std::pair<std::int32_t, std::int32_t>> side_pair(n / 2);
+  for (std::size_t k = 0; k < n; k += 2) {
+    const SidedTriangle &a = s[k], &b = s[k + 1];
+    if (a.sorted != b.sorted || a.odd == b.odd || (k + 2 < n && s[k + 2].sorted == a.sorted)) return;
+    const std::int32_t ra = soup.triangles[a.index].tag, rb = soup.triangles[b.index].tag;
+    if (!is_region(ra) || !is_region(rb)) return;
+    side_pair[k / 2] = {std::min(ra, rb), std::max(ra, rb)};
+  }
+  std::vector<std::pair<std::int32_t, std::int32_t>> pairs(side_pair);
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  std::vector<TaggedTriangle> merged(n / 2);
+  for (std::size_t k = 0; k < n; k += 2) {
+    const auto tag = std::lower_bound(pairs.begin(), pairs.end(), side_pair[k / 2]) - pairs.begin() + 1;
+    merged[k / 2] = {soup.triangles[std::min(s[k].index, s[k + 1].index)].v, std::int32_t(tag)};
+  }
+  soup.triangles = std::move(merged);
+  std::string list;
+  for (std::size_t p = 0; p < pairs.size(); ++p) {
+    const auto [lo, hi] = pairs[p];
+    const std::string sides = std::to_string(lo) + "|" + (lo == hi ? "outside" : std::to_string(hi));
+    soup.groups.push_back({2, std::int32_t(p + 1), "subdomains " + sides, {std::int32_t(p + 1)}});
+    if (p < 8) list += (p ? ", " : "") + std::to_string(p + 1) + " = " + sides;
+  }
+  if (pairs.size() > 8) list += ", ...";
+  soup.warnings.push_back(soup.source + ": every triangle is written once per side (CGAL Mesh_3 output_to_medit, " +
+                          "show_patches = false): merged into " + std::to_string(n / 2) +
+                          " triangles tagged by the subdomains they separate (" + list + ")");
 }
 
 struct Reader {
@@ -99,8 +168,7 @@ struct Reader {
         const std::int64_t n = count("Edges", 6);
         for (std::int64_t i = 0; i < n; ++i) {
           TaggedEdge e;
-          for (auto& v : e.v) v = vertex();
-          if (const std::string bad = io::repeated_vertex(e.v, "edge"); !bad.empty()) cur.fail(bad);
+          for (auto& v : e.v) v = vertex();  // degenerate edges are dropped by drop_unattached
           e.tag = ref();
           soup.edges.push_back(e);
         }
@@ -123,6 +191,8 @@ struct Reader {
     if (soup.points.empty()) throw InputError(cur.source(), "end of file", "missing Vertices section");
     if (soup.tets.empty()) throw InputError(cur.source(), "end of file", "missing Tetrahedra section");
     soup.source = cur.source();
+    merge_two_sided_triangles(soup);
+    io::drop_unattached(soup);
     return std::move(soup);
   }
 };

@@ -6,8 +6,13 @@
 #include <unordered_map>
 #include <vector>
 
+#include <algorithm>
+#include <map>
+#include <set>
+
 #include "io/msh_internal.h"
 #include "io/record_checks.h"
+#include "io/unattached.h"
 
 namespace polydual::io::msh {
 namespace {
@@ -19,6 +24,10 @@ struct Reader {
   bool binary;
   TetSoup soup;
   NodeIndex node_index;
+  ElementOrigins origins;  // the elementary tag of every triangle, edge, corner
+  std::map<std::pair<int, std::int32_t>, std::string> names;
+  std::map<std::pair<int, std::int32_t>, std::set<std::int32_t>> physicals;  // (dim, tag) -> soup tags
+  int max_order = 1;
 
   [[noreturn]] void fail(const std::string& what) const { cur.fail(what); }
 
@@ -57,28 +66,36 @@ struct Reader {
     if (!tags.empty() && tags[0] != 0) return static_cast<std::int32_t>(tags[0]);
     return tags.size() > 1 ? static_cast<std::int32_t>(tags[1]) : 0;
   }
-
-  template <std::size_t N>
-  void check(const std::array<std::uint32_t, N>& v, std::int64_t id, const char* what) const {
-    const std::string bad = repeated_vertex(v, what);
-    if (!bad.empty()) fail("element " + std::to_string(id) + ": " + bad);
+  static std::int32_t elementary_of(const std::vector<std::int64_t>& tags) {
+    return tags.size() > 1 ? static_cast<std::int32_t>(tags[1]) : tag_of(tags);
   }
 
-  void add(Use use, std::int64_t id, const std::int64_t* nodes, std::int32_t tag) {
+  void add(Use use, std::int64_t type, std::int64_t id, const std::int64_t* nodes, const std::vector<std::int64_t>& tags) {
+    if (use == Use::ignore) return;
+    const std::int32_t tag = tag_of(tags);
+    const int dim = use == Use::tet ? 3 : use == Use::triangle ? 2 : use == Use::line ? 1 : 0;
+    if (!tags.empty() && tags[0] != 0) physicals[{dim, tag}].insert(tag);
+    max_order = std::max(max_order, element_order(type));
     switch (use) {
       case Use::tet:
         soup.tets.push_back({node(id, nodes[0]), node(id, nodes[1]), node(id, nodes[2]), node(id, nodes[3])});
         soup.tet_region.push_back(tag);
         break;
-      case Use::triangle:
+      case Use::triangle: {
         soup.triangles.push_back({{node(id, nodes[0]), node(id, nodes[1]), node(id, nodes[2])}, tag});
-        check(soup.triangles.back().v, id, "triangle");
+        origins.triangle.push_back(elementary_of(tags));
+        const std::string bad = repeated_vertex(soup.triangles.back().v, "triangle");
+        if (!bad.empty()) fail("element " + std::to_string(id) + ": " + bad);
         break;
-      case Use::line:
+      }
+      case Use::line:  // degenerate lines (a collapsed curve) are dropped by drop_unattached
         soup.edges.push_back({{node(id, nodes[0]), node(id, nodes[1])}, tag});
-        check(soup.edges.back().v, id, "line");
+        origins.edge.push_back(elementary_of(tags));
         break;
-      case Use::point: soup.corners.push_back({node(id, nodes[0]), tag}); break;
+      case Use::point:
+        soup.corners.push_back({node(id, nodes[0]), tag});
+        origins.corner.push_back(elementary_of(tags));
+        break;
       case Use::ignore: break;
     }
   }
@@ -100,7 +117,7 @@ struct Reader {
       for (std::int64_t k = 0; k < ntags; ++k) tags.push_back(tag_value(cur.integer("tag")));
       nodes.clear();
       for (int k = 0; k < node_count(type); ++k) nodes.push_back(cur.integer("node number"));
-      add(use, id, nodes.data(), tag_of(tags));
+      add(use, type, id, nodes.data(), tags);
     }
   }
 
@@ -127,7 +144,7 @@ struct Reader {
         for (std::int64_t k = 0; k < ntags; ++k) tags.push_back(cur.binary<std::int32_t>(rec));
         nodes.clear();
         for (int k = 0; k < nn; ++k) nodes.push_back(cur.binary<std::int32_t>(rec));
-        add(use, id, nodes.data(), tag_of(tags));
+        add(use, type, id, nodes.data(), tags);
       }
       done += count;
     }
@@ -141,24 +158,36 @@ struct Reader {
   }
 
   // $PhysicalNames is text even in binary files: "n" then "dim tag "name"".
-  // The names carry no classification, but parsing them catches corrupt files.
   void physical_names() {
     const std::int64_t n = cur.integer_in("number of physical names", 0, 1 << 30);
     cur.check_count(n, 6, "physical name");
     for (std::int64_t i = 0; i < n; ++i) {
-      cur.integer_in("physical dimension", 0, 3);
-      cur.integer("physical tag");
-      const std::string_view name = cur.rest_of_line();
-      if (name.find('"') == std::string_view::npos) cur.fail("expected a quoted physical name");
+      const int dim = static_cast<int>(cur.integer_in("physical dimension", 0, 3));
+      const std::int32_t t = static_cast<std::int32_t>(tag_value(cur.integer("physical tag")));
+      names[{dim, t}] = physical_name(cur);
     }
     expect_end(cur, "PhysicalNames");
+  }
+
+  // Groups from the physical tags the elements carry (each is its own soup
+  // tag) and the names; then the unattached elements are dropped.
+  void finish() {
+    for (const auto& [key, name] : names) physicals[key];
+    for (const auto& [key, tags] : physicals) {
+      auto n = names.find(key);
+      soup.groups.push_back({key.first, key.second, n == names.end() ? std::string() : n->second,
+                             std::vector<std::int32_t>(tags.begin(), tags.end())});
+    }
+    if (const std::string w = high_order_warning(soup.source, max_order); !w.empty()) soup.warnings.push_back(w);
+    drop_unattached(soup, origins);
   }
 };
 
 }  // namespace
 
 TetSoup read_msh2(TextCursor& cur, bool binary) {
-  Reader r{cur, binary, {}, {}};
+  Reader r{cur, binary, {}, {}, {}, {}, {}, 1};
+  r.soup.source = cur.source();
   read_sections(cur, [&](std::string_view name) {
     if (name == "Nodes") r.nodes();
     else if (name == "Elements") r.elements();
@@ -166,6 +195,7 @@ TetSoup read_msh2(TextCursor& cur, bool binary) {
     else return false;
     return true;
   });
+  r.finish();
   return std::move(r.soup);
 }
 

@@ -1,6 +1,7 @@
 // Pieces shared by the msh 2.2 and msh 4.1 readers (not a public header).
 #pragma once
 #include <cstdint>
+#include <string>
 #include <string_view>
 
 #include "core/error.h"
@@ -15,8 +16,13 @@ enum class Use { tet, triangle, line, point, ignore };
 // Number of nodes of a Gmsh element type, or -1 when the type is unknown.
 int node_count(std::int64_t type);
 // Classifies the type, failing (at the cursor's place) for unknown types and
-// for 3D types other than the linear tet.
+// for 3D types other than tets. High-order tets, triangles and lines (Gmsh
+// lists their corner vertices first) are read by those corners.
 Use element_use(const TextCursor& cur, std::int64_t type);
+// The polynomial order of a tet, triangle or line type (1 for linear ones).
+int element_order(std::int64_t type);
+// The warning for a file with elements of order > 1 ("" when max_order <= 1).
+std::string high_order_warning(const std::string& source, int max_order);
 
 // Skips an unrecognised section up to and including "$End<name>".
 void skip_section(TextCursor& cur, std::string_view name);
@@ -51,6 +57,10 @@ void read_sections(TextCursor& cur, ReadSection&& read) {
 // Section loops after $MeshFormat (the cursor stands after $EndMeshFormat).
 TetSoup read_msh2(TextCursor& cur, bool binary);
 TetSoup read_msh4(TextCursor& cur, bool binary);
+
+// The name of a $PhysicalNames record (the rest of the line, between the
+// first and the last double quote); fails when it is not quoted.
+std::string physical_name(TextCursor& cur);
 
 // Reads a binary value and rejects non-finite coordinates at their byte.
 double binary_coordinate(TextCursor& cur, const char* what);

@@ -26,18 +26,34 @@ static int element_dim(std::int64_t type) {
   return 3;  // 92, 93
 }
 
+int element_order(std::int64_t type) {
+  switch (type) {
+    case 8: case 9: case 11: return 2;                      // line3, triangle6, tet10
+    case 26: case 20: case 21: case 29: return 3;           // line4, triangle9/10, tet20
+    case 27: case 22: case 23: case 30: return 4;           // line5, triangle12/15, tet35
+    case 28: case 24: case 25: case 31: return 5;           // line6, triangle15i/21, tet56
+    default: return 1;
+  }
+}
+
 Use element_use(const TextCursor& cur, std::int64_t type) {
   auto fail = [&](const std::string& what) { cur.fail(what); };
   if (node_count(type) < 0) fail("unknown element type " + std::to_string(type));
   switch (type) {
-    case 4: return Use::tet;
-    case 2: return Use::triangle;
-    case 1: return Use::line;
+    case 4: case 11: case 29: case 30: case 31: return Use::tet;
+    case 2: case 9: case 20: case 21: case 22: case 23: case 24: case 25: return Use::triangle;
+    case 1: case 8: case 26: case 27: case 28: return Use::line;
     case 15: return Use::point;
     default: break;
   }
-  if (element_dim(type) == 3) fail("unsupported element type " + std::to_string(type) + " (only linear tets)");
+  if (element_dim(type) == 3) fail("unsupported element type " + std::to_string(type) + " (only tets)");
   return Use::ignore;
+}
+
+std::string high_order_warning(const std::string& source, int max_order) {
+  if (max_order <= 1) return {};
+  return source + ": " + (max_order == 2 ? std::string("second-order") : "order-" + std::to_string(max_order)) +
+         " elements: using their corner vertices (the other nodes are left unused)";
 }
 
 void skip_section(TextCursor& cur, std::string_view name) {
@@ -52,6 +68,13 @@ void expect_end(TextCursor& cur, std::string_view name) {
   const std::string end = "$End" + std::string(name);
   const std::string_view t = cur.token(end.c_str());
   if (t != end) cur.fail("expected " + end + ", got '" + quoted(t) + "' (count larger than the data?)");
+}
+
+std::string physical_name(TextCursor& cur) {
+  const std::string_view line = cur.rest_of_line();
+  const std::size_t first = line.find('"'), last = line.rfind('"');
+  if (first == std::string_view::npos || last == first) cur.fail("expected a quoted physical name");
+  return std::string(line.substr(first + 1, last - first - 1));
 }
 
 double binary_coordinate(TextCursor& cur, const char* what) {

@@ -5,14 +5,20 @@
 // keeps global state (gmsh::initialize, a current model) that would make
 // readers non-reentrant.
 //
-// What becomes what: linear tets (type 4) -> tets; triangles (2), lines (1)
-// and points (15) -> tagged triangles / edges / corners. msh4: tet region = the
-// volume entity's first physical tag, else its entity tag; triangle / edge /
-// corner tag = the surface / curve / point entity tag; full_classification is
-// set when $Entities is present and triangles were given. msh2: every tag is
-// the physical tag if nonzero, else the elementary tag. Other 3D element types
-// are errors (only linear tets are supported); other lower-dimensional types
-// are ignored.
+// What becomes what: tets (type 4, and high-order tets by their first four,
+// corner, nodes) -> tets; triangles, lines and points (linear or high-order,
+// by their corners) -> tagged triangles / edges / corners. msh4: tet region =
+// the volume entity's first physical tag, else its entity tag; triangle / edge
+// / corner tag = the surface / curve / point entity tag; partition pieces of
+// $PartitionedEntities are mapped to their parent model entity (elements on
+// partition boundaries and ghost elements are dropped, repeated nodes with the
+// same coordinates merged); full_classification is set when $Entities gives
+// elements for all its curves (but collapsed ones), surfaces and volumes (a
+// file saved with -save_all, or whose every entity is in a physical group).
+// msh2: every tag is the physical tag if nonzero, else the elementary tag.
+// Both: $PhysicalNames and the physical tags become soup.groups; input not
+// attached to the tets is dropped (io/unattached.h); other 3D element types
+// are errors; other lower-dimensional types are ignored.
 #pragma once
 #include <string>
 #include <string_view>

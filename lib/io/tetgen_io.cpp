@@ -10,6 +10,7 @@
 #include "io/file_bytes.h"
 #include "io/record_checks.h"
 #include "io/text_cursor.h"
+#include "io/unattached.h"
 
 namespace polydual {
 namespace {
@@ -126,6 +127,7 @@ TetSoup read_tetgen(std::string_view node, std::string_view ele, std::optional<s
   read_elements(ele, basename + ".ele", base, soup);
   if (face) read_faces(*face, basename + ".face", base, soup);
   soup.source = basename + ".ele";
+  io::drop_unattached(soup);
   return soup;
 }
 

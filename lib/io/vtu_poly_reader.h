@@ -1,5 +1,6 @@
-// Reads a .vtu written by write_vtu_poly (ASCII or uncompressed binary) back
-// into a PolyMesh.
+// Reads a .vtu of VTK_POLYHEDRON cells (as write_vtu_poly writes them, in any
+// of its formats, or as VTK writes them: ascii, inline base64, appended raw or
+// base64, zlib-compressed; lib/io/vtk_xml.h) back into a PolyMesh.
 //
 // VTK stores each polyhedron's faces separately, so shared faces are rebuilt:
 // two face occurrences (in any cells, possibly the same one) whose loops are the
@@ -13,14 +14,19 @@
 //
 // Optional arrays (material, primal_vertex, class_dim, class_tag, face_kind,
 // face_tag) default to 0 / invalid / unclassified / inferred kinds when absent.
-// Errors: InputError(path, "line N" or "cell N", what).
+// Errors: InputError(path, "line N", "byte N" or "cell N", what); values out of
+// range of their field (class_dim outside -1..3, tags beyond 32 bits, face
+// kinds other than 0..3) are errors too.
 #pragma once
 #include <string>
+#include <string_view>
 
 #include "mesh/poly_mesh.h"
 
 namespace polydual {
 
 PolyMesh read_vtu_poly(const std::string& path);
+// The same from the bytes of a file; `source` names it in errors.
+PolyMesh read_vtu_poly_bytes(std::string_view bytes, const std::string& source);
 
 }  // namespace polydual

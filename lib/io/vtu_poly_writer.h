@@ -1,6 +1,7 @@
 // VTK XML UnstructuredGrid (.vtu, version 1.0) writer for PolyMesh (SPEC §9):
 // one VTK_POLYHEDRON cell per dual cell, opens in ParaView and is read back
-// exactly by read_vtu_poly (lib/io/vtu_poly_reader.h).
+// exactly by read_vtu_poly (lib/io/vtu_poly_reader.h), in every format of
+// VtuOptions (ascii, inline base64, appended raw; zlib-compressed or not).
 //
 // File contents:
 //   CellData   material (Int32), primal_vertex (Int64, -1 when none), then the
@@ -30,14 +31,23 @@ struct CellField {
 
 struct VtuOptions {
   // false: every array as ASCII text (doubles with 17 significant digits);
-  // true: "binary" = base64 of the raw little-endian bytes, no compression,
-  // about half the size and faster to parse.
+  // true: "binary" = base64 of the raw little-endian bytes inside each
+  // DataArray, about half the size and faster to parse.
   bool binary = false;
+  // true: the raw bytes of every array in one <AppendedData encoding="raw">
+  // section after the XML (VTK's own default; the fastest to write and read,
+  // about 3/4 of the "binary" size). Overrides `binary`.
+  bool appended = false;
+  // 0: no compression; 1..9: every binary or appended array zlib-compressed at
+  // this level in 32 KiB blocks (compressor="vtkZLibDataCompressor", what
+  // meshio writes). Needs binary or appended.
+  int zlib_level = 0;
 };
 
 // Writes `mesh` to `path` atomically (no half-written file on failure).
 // Same mesh and options -> same bytes. Throws UsageError when an extra field's
-// size differs from the cell count or its name clashes with a built-in array.
+// size differs from the cell count or its name clashes with a built-in array,
+// or when the options ask for compressed ASCII or a level outside 0..9.
 void write_vtu_poly(const PolyMesh& mesh, const std::string& path,
                     const std::vector<CellField>& extra = {}, const VtuOptions& options = {});
 

@@ -3,6 +3,7 @@
 // turns it into a ClassifiedTetMesh.
 #pragma once
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -24,6 +25,27 @@ struct TaggedVertex {
   std::int32_t tag = 0;  // model vertex tag
 };
 
+// Lower-dimensional input the reader dropped because it is not attached to
+// the tets: points/curves/surfaces count model entities of dimension 0/1/2
+// left with no element on the tet mesh (construction points, free curves, the
+// parts of internal sheets outside the volume, entities the file declares but
+// gives no element); elements counts the lower-dimensional elements dropped
+// (a vertex no tet uses, or a repeated vertex as on a collapsed curve).
+struct IgnoredEntities {
+  std::size_t points = 0, curves = 0, surfaces = 0, elements = 0;
+  bool any() const { return points + curves + surfaces + elements > 0; }
+};
+
+// A named (or numbered) group of the source: a Gmsh physical group. `entities`
+// are the tags it holds as this soup carries them: tet_region values for
+// dim 3, triangle / edge / corner tags for dim 2 / 1 / 0 (sorted, distinct).
+struct NamedGroup {
+  int dim = 0;
+  std::int32_t tag = 0;
+  std::string name;  // "" when the file gives no name
+  std::vector<std::int32_t> entities;
+};
+
 struct TetSoup {
   std::string source;                             // file name, for error messages
   std::vector<Point3> points;
@@ -39,6 +61,12 @@ struct TetSoup {
   // with $Entities): classify() then checks the given classification instead of
   // inferring it, and reports contradictions.
   bool full_classification = false;
+  // What the reader dropped (see IgnoredEntities) and why, one line each
+  // starting with the file name, for the command to print on stderr.
+  IgnoredEntities ignored;
+  std::vector<std::string> warnings;
+  // Physical groups, sorted by (dim, tag).
+  std::vector<NamedGroup> groups;
 };
 
 }  // namespace polydual

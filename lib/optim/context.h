@@ -4,6 +4,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/progress.h"
 #include "optim/boundary.h"
 #include "optim/optimize.h"
 #include "quality/stencil.h"
@@ -20,6 +21,7 @@ struct Context {
   std::vector<std::uint8_t> cell_valid;      // exact star test, kept current
   std::chrono::steady_clock::time_point start;
   OptimReport* report = nullptr;
+  const ProgressFn* progress = nullptr;      // called after each record(); may be null
 
   Context(PolyMesh& m, const ClassifiedTetMesh* primal, const OptimParams& p);
   double seconds() const;

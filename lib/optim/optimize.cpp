@@ -3,9 +3,11 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <cstdio>
 #include <string>
 
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "optim/context.h"
 #include "quality/star_verdict.h"
 
@@ -49,6 +51,7 @@ double Context::objective(std::span<const Point3> pts) const {
 }
 
 void Context::record(int iteration) {
+  throw_if_interrupted();  // between iterations: Ctrl-C stops a long run promptly
   IterationRecord r;
   r.iteration = iteration;
   r.objective = objective(mesh.points);
@@ -58,6 +61,12 @@ void Context::record(int iteration) {
   r.mean_quality = st.mean;
   r.seconds = seconds();
   report->iterations.push_back(r);
+  if (progress && *progress) {
+    char detail[128];
+    std::snprintf(detail, sizeof detail, "invalid cells %zu, mean quality %.4f, min %.4f", r.invalid,
+                  r.mean_quality, r.min_quality);
+    (*progress)(ProgressEvent{"optimize", iteration, params.max_iter, r.seconds, detail});
+  }
 }
 
 void Context::basis(PointId p, Vec3 B[3]) const {
@@ -70,10 +79,12 @@ void Context::basis(PointId p, Vec3 B[3]) const {
 
 }  // namespace optim_detail
 
-OptimReport optimize(PolyMesh& mesh, const ClassifiedTetMesh* primal, const OptimParams& params) {
+OptimReport optimize(PolyMesh& mesh, const ClassifiedTetMesh* primal, const OptimParams& params,
+                     const ProgressFn& progress) {
   OptimReport rep;
   optim_detail::Context ctx(mesh, primal, params);
   ctx.report = &rep;
+  ctx.progress = &progress;
   const auto q0 = cell_qualities(ctx.stencil, params.metric, mesh.points);
   rep.before = quality_stats(q0, params.metric);
   ctx.record(0);

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/json.h"
+#include "core/progress.h"
 #include "mesh/classified_tet_mesh.h"
 #include "mesh/poly_mesh.h"
 #include "quality/corner.h"
@@ -100,7 +101,9 @@ struct OptimReport {
 
 // Optimises `mesh` in place. With primal == nullptr boundary points (dim 0..2) are
 // fixed; otherwise dim-1/2 points slide on the primal's model edges/faces.
-OptimReport optimize(PolyMesh& mesh, const ClassifiedTetMesh* primal, const OptimParams& params);
+// `progress` (may be empty) is called after every iteration with its record.
+OptimReport optimize(PolyMesh& mesh, const ClassifiedTetMesh* primal, const OptimParams& params,
+                     const ProgressFn& progress = {});
 
 // CLI parsers; throw UsageError on an unknown value.
 OptimParams::Method parse_method(std::string_view s);             // none|local|global

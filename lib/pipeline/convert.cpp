@@ -1,27 +1,33 @@
 #include "pipeline/convert.h"
 
+#include "core/interrupt.h"
 #include "core/stopwatch.h"
+#include "io/output_guard.h"
 #include "io/read_tet_mesh.h"
 
 namespace polydual {
 
 namespace {
-// Runs one stage, times it and records it; returns the stage's value.
+// Runs one stage, times it and records it; returns the stage's value. A
+// pending interrupt (Ctrl-C, SIGTERM) stops the pipeline between stages.
 template <class F>
-auto run_stage(ConvertReport& report, const StageObserver& observe, const char* name, F&& stage) {
+auto run_stage(ConvertReport& report, const ConvertHooks& hooks, const char* name, F&& stage) {
+  throw_if_interrupted();
   const Stopwatch clock;
   Json stats;
   auto value = stage(stats);
   report.stages.push_back(StageRecord{name, clock.seconds(), std::move(stats)});
-  if (observe) observe(report.stages.back());
+  if (hooks.stage_done) hooks.stage_done(report.stages.back());
   return value;
 }
 
 
 // The stages from classify to the final check, appended to r.report.
-void run_pipeline(ConvertResult& r, const TetSoup& soup, const PipelineParams& params, const StageObserver& observe) {
+void run_pipeline(ConvertResult& r, const TetSoup& soup, const PipelineParams& params, const ConvertHooks& hooks) {
   ConvertReport& rep = r.report;
-  r.primal = run_stage(rep, observe, "classify", [&](Json& stats) {
+  r.ignored = soup.ignored;
+  r.warnings = soup.warnings;
+  r.primal = run_stage(rep, hooks, "classify", [&](Json& stats) {
     ClassifyStats st;
     ClassifiedTetMesh m = classify(soup, params.classify, &st);
     stats = Json::object();
@@ -31,7 +37,7 @@ void run_pipeline(ConvertResult& r, const TetSoup& soup, const PipelineParams& p
     stats.set("classification", st.seconds_classification);
     return m;
   });
-  r.mesh = run_stage(rep, observe, "dual", [&](Json& stats) {
+  r.mesh = run_stage(rep, hooks, "dual", [&](Json& stats) {
     DualStats st;
     PolyMesh pm = build_dual(r.primal, params.dual, &st);
     stats = st.to_json();
@@ -40,18 +46,18 @@ void run_pipeline(ConvertResult& r, const TetSoup& soup, const PipelineParams& p
   const bool optimise = params.optim.method != OptimParams::Method::None;
   // Validation is topological and the optimiser moves points only: it runs
   // once, on the mesh that is returned.
-  r.check = run_stage(rep, observe, "check", [&](Json& stats) {
+  r.check = run_stage(rep, hooks, "check", [&](Json& stats) {
     CheckResult c = check_mesh(r.mesh, &r.primal, !optimise);
     stats = c.to_json();
     return c;
   });
   rep.invalid_before = r.check.invalid_cells;
   if (optimise) {
-    run_stage(rep, observe, "optimize", [&](Json& stats) {
-      stats = optimize(r.mesh, &r.primal, params.optim).to_json();
+    run_stage(rep, hooks, "optimize", [&](Json& stats) {
+      stats = optimize(r.mesh, &r.primal, params.optim, hooks.progress).to_json();
       return 0;
     });
-    r.check = run_stage(rep, observe, "check_after", [&](Json& stats) {
+    r.check = run_stage(rep, hooks, "check_after", [&](Json& stats) {
       CheckResult c = check_mesh(r.mesh, &r.primal);
       stats = c.to_json();
       return c;
@@ -68,33 +74,37 @@ const StageRecord* ConvertReport::stage(const std::string& name) const {
   return nullptr;
 }
 
-ConvertResult convert(const TetSoup& soup, const PipelineParams& params, const StageObserver& observe) {
+ConvertResult convert(const TetSoup& soup, const PipelineParams& params, const ConvertHooks& hooks) {
   params.validate();
   const Stopwatch clock;
   ConvertResult r;
-  run_pipeline(r, soup, params, observe);
+  run_pipeline(r, soup, params, hooks);
   r.report.seconds = clock.seconds();
   return r;
 }
 
-Json write_result(const ConvertResult& r, const std::string& path, PolyFormat format) {
-  return write_poly_mesh(r.mesh, path, format, verdict_fields(r.check.verdicts));
+Json write_result(const ConvertResult& r, const std::string& path, PolyFormat format,
+                  const PolyWriteOptions& options) {
+  return write_poly_mesh(r.mesh, path, format, verdict_fields(r.check.verdicts), options);
 }
 
 ConvertResult convert_file(const std::string& in, const std::string& out, PolyFormat format,
-                           const PipelineParams& params, const StageObserver& observe) {
+                           const PipelineParams& params, const ConvertHooks& hooks, const PolyWriteOptions& options) {
   params.validate();
+  const std::string inputs[] = {in};
+  check_output_target(inputs, out, format == PolyFormat::Foam ? OutputKind::FoamCase : OutputKind::File,
+                      options.foam.force, format == PolyFormat::Vtu ? ".vtu" : "");
   const Stopwatch clock;
   ConvertResult r;
-  const TetSoup soup = run_stage(r.report, observe, "read", [&](Json& stats) {
+  const TetSoup soup = run_stage(r.report, hooks, "read", [&](Json& stats) {
     TetSoup s = read_tet_mesh(in);
     stats = Json::object();
     stats.set("path", in);
     return s;
   });
-  run_pipeline(r, soup, params, observe);
-  r.written = run_stage(r.report, observe, "write", [&](Json& stats) {
-    Json w = write_result(r, out, format);
+  run_pipeline(r, soup, params, hooks);
+  r.written = run_stage(r.report, hooks, "write", [&](Json& stats) {
+    Json w = write_result(r, out, format, options);
     stats = w;
     return w;
   });
@@ -102,10 +112,11 @@ ConvertResult convert_file(const std::string& in, const std::string& out, PolyFo
   return r;
 }
 
-OptimizeResult optimize_mesh(PolyMesh& mesh, const ClassifiedTetMesh* primal, const OptimParams& params) {
+OptimizeResult optimize_mesh(PolyMesh& mesh, const ClassifiedTetMesh* primal, const OptimParams& params,
+                             const ProgressFn& progress) {
   params.validate();
   OptimizeResult r;
-  r.optim = optimize(mesh, primal, params);
+  r.optim = optimize(mesh, primal, params, progress);
   r.check = check_mesh(mesh, primal);
   return r;
 }

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/json.h"
+#include "core/progress.h"
 #include "io/write_poly_mesh.h"
 #include "mesh/classified_tet_mesh.h"
 #include "mesh/poly_mesh.h"
@@ -41,23 +42,32 @@ struct ConvertResult {
   CheckResult check;         // validation and exact verdicts of `mesh` as returned
   ConvertReport report;
   Json written;              // convert_file: the writer's record
+  IgnoredEntities ignored;   // what the reader dropped (unattached entities)
+  std::vector<std::string> warnings;  // the reader's warnings, one line each
 };
 
-// Called after each stage with its record (progress, logging); may be empty.
-using StageObserver = std::function<void(const StageRecord&)>;
+// What a caller sees while the pipeline runs; every member may be empty.
+struct ConvertHooks {
+  std::function<void(const StageRecord&)> stage_done;  // after each stage, with its record
+  ProgressFn progress;                                 // within long stages (optimise)
+};
 
 // soup -> ConvertResult. Throws InputError for a bad mesh (naming soup.source
 // and the place) and UsageError for bad params.
-ConvertResult convert(const TetSoup& soup, const PipelineParams& params, const StageObserver& observe = {});
+ConvertResult convert(const TetSoup& soup, const PipelineParams& params, const ConvertHooks& hooks = {});
 
 // Writes r.mesh with its verdicts as cell data ("valid", "bad_tets").
-Json write_result(const ConvertResult& r, const std::string& path, PolyFormat format);
+Json write_result(const ConvertResult& r, const std::string& path, PolyFormat format,
+                  const PolyWriteOptions& options = {});
 
 // File to file: read any tet mesh format (io/read_tet_mesh.h), convert, write
-// (io/write_poly_mesh.h); the report gains the "read" and "write" stages. The
-// caller checks that `out` may be written before (nothing is written on error).
+// (io/write_poly_mesh.h); the report gains the "read" and "write" stages.
+// Before any work `out` is checked (io/output_guard.h: never an input, never a
+// directory polydual did not write unless options.foam.force); nothing is
+// written on error or interruption.
 ConvertResult convert_file(const std::string& in, const std::string& out, PolyFormat format,
-                           const PipelineParams& params, const StageObserver& observe = {});
+                           const PipelineParams& params, const ConvertHooks& hooks = {},
+                           const PolyWriteOptions& options = {});
 
 // The stages after the dual on their own (the `optimize` command starts from a
 // PolyMesh read back from a file): optimise in place, then check.
@@ -65,6 +75,7 @@ struct OptimizeResult {
   OptimReport optim;
   CheckResult check;
 };
-OptimizeResult optimize_mesh(PolyMesh& mesh, const ClassifiedTetMesh* primal, const OptimParams& params);
+OptimizeResult optimize_mesh(PolyMesh& mesh, const ClassifiedTetMesh* primal, const OptimParams& params,
+                             const ProgressFn& progress = {});
 
 }  // namespace polydual

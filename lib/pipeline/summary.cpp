@@ -92,6 +92,15 @@ Json materials_json(const PolyMesh& pm, const ValidationReport& rep, const Class
 
 }  // namespace
 
+Json ignored_summary(const IgnoredEntities& ignored) {
+  Json j = Json::object();
+  j.set("points", ignored.points);
+  j.set("curves", ignored.curves);
+  j.set("surfaces", ignored.surfaces);
+  j.set("elements", ignored.elements);
+  return j;
+}
+
 Json model_summary(const ClassifiedTetMesh& m) {
   Json model = Json::object();
   for (int d = 0; d < 4; ++d) model.set(d == 0 ? "vertices" : d == 1 ? "edges" : d == 2 ? "faces" : "regions",
@@ -138,6 +147,10 @@ Json convert_summary(const ConvertResult& r, const PipelineParams& params) {
   if (r.written.find("path")) j.set("output", r.written);
   j.set("tets", r.primal.num_tets());
   j.set("vertices", r.primal.num_vertices());
+  j.set("ignored", ignored_summary(r.ignored));
+  Json warnings = Json::array();
+  for (const std::string& w : r.warnings) warnings.push(w);
+  j.set("warnings", warnings);
   j.set("model", model_summary(r.primal));
   Json mesh = mesh_summary(r.mesh, r.check, &r.primal);
   for (const char* k : {"cells", "faces", "points", "invalid_cells", "closed_cells", "slit_cells", "face_errors",

@@ -9,6 +9,9 @@
 
 namespace polydual {
 
+// {"points", "curves", "surfaces", "elements"}: what a reader dropped.
+Json ignored_summary(const IgnoredEntities& ignored);
+
 // Counts of model entities and the model faces with their kinds.
 Json model_summary(const ClassifiedTetMesh& mesh);
 

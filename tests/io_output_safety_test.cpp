@@ -1,0 +1,630 @@
+// Nothing the user owns is lost (lib/core/atomic_file, lib/core/interrupt,
+// lib/io/output_guard, lib/io/foam_writer): outputs that are inputs or foreign
+// directories are refused, an OpenFOAM case only ever has its polyMesh
+// replaced, failures and interruptions leave the previous output and no
+// temporary, and write errors carry the system's reason.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "core/interrupt.h"
+#include "io/foam_writer.h"
+#include "io/output_guard.h"
+
+namespace polydual {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+fs::path scratch_root() {
+  return fs::temp_directory_path() / ("polydual_output_safety_" + std::to_string(::getpid()));
+}
+struct ScratchCleanup : ::testing::Environment {
+  void TearDown() override {
+    std::error_code ec;
+    fs::remove_all(scratch_root(), ec);
+  }
+};
+[[maybe_unused]] const auto* const kCleanup = ::testing::AddGlobalTestEnvironment(new ScratchCleanup);
+
+// A fresh, empty directory for one test.
+fs::path scratch(const std::string& name) {
+  const fs::path p = scratch_root() / name;
+  fs::remove_all(p);
+  fs::create_directories(p);
+  return p;
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+void put(const fs::path& p, const std::string& text) {
+  fs::create_directories(p.parent_path());
+  std::ofstream(p, std::ios::binary) << text;
+}
+
+// Every entry under `dir` (relative path -> contents, "<dir>" for directories,
+// "-> target" for symbolic links): compared before and after to prove that
+// nothing was touched.
+std::map<std::string, std::string> snapshot(const fs::path& dir) {
+  std::map<std::string, std::string> out;
+  for (auto it = fs::recursive_directory_iterator(dir); it != fs::recursive_directory_iterator(); ++it) {
+    const std::string rel = fs::relative(it->path(), dir).string();
+    if (it->is_symlink()) out[rel] = "-> " + fs::read_symlink(it->path()).string();
+    else if (it->is_directory()) out[rel] = "<dir>";
+    else out[rel] = slurp(it->path());
+  }
+  return out;
+}
+
+// Names anywhere under `dir` that look like a temporary of ours.
+std::vector<std::string> temporaries(const fs::path& dir) {
+  std::vector<std::string> out;
+  for (const auto& e : fs::recursive_directory_iterator(dir)) {
+    const std::string name = e.path().filename().string();
+    if (name.find(".tmp.") != std::string::npos || name.find(".old.") != std::string::npos)
+      out.push_back(e.path().string());
+  }
+  return out;
+}
+
+// An n*n*n block of hexes of edge `h` with integer-ish coordinates (short
+// lines, so the file sizes are predictable): one material, six external patches.
+PolyMesh hex_block(int n, double h) {
+  PolyMesh m;
+  auto pid = [&](int i, int j, int k) { return PointId(i + (n + 1) * (j + (n + 1) * k)); };
+  auto cid = [&](int i, int j, int k) { return CellId(i + n * (j + n * k)); };
+  for (int k = 0; k <= n; ++k)
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) m.add_point({h * i, h * j, h * k}, ModelRef{3, 1});
+  std::vector<std::vector<HalfFace>> cells(static_cast<std::size_t>(n * n * n));
+  auto add = [&](int axis, int s, int a, int b) {
+    auto at = [&](int da, int db) {
+      std::array<int, 3> q{};
+      q[axis] = s;
+      q[(axis + 1) % 3] = a + da;
+      q[(axis + 2) % 3] = b + db;
+      return pid(q[0], q[1], q[2]);
+    };
+    std::vector<PointId> loop{at(0, 0), at(1, 0), at(1, 1), at(0, 1)};  // +axis normal
+    std::array<int, 3> below{}, above{};
+    below[axis] = s - 1;
+    above[axis] = s;
+    below[(axis + 1) % 3] = above[(axis + 1) % 3] = a;
+    below[(axis + 2) % 3] = above[(axis + 2) % 3] = b;
+    if (s == 0 || s == n) {
+      const bool low = s == 0;
+      const CellId c = low ? cid(above[0], above[1], above[2]) : cid(below[0], below[1], below[2]);
+      if (low) std::reverse(loop.begin(), loop.end());
+      const FaceId f = m.add_face(loop, c, CellId::invalid(), FaceKind::External, 2 * axis + (low ? 1 : 2));
+      cells[c.idx].push_back(HalfFace(f, 0));
+      return;
+    }
+    const CellId c0 = cid(below[0], below[1], below[2]), c1 = cid(above[0], above[1], above[2]);
+    const FaceId f = m.add_face(loop, c0, c1, FaceKind::Interior, 0);
+    cells[c0.idx].push_back(HalfFace(f, 0));
+    cells[c1.idx].push_back(HalfFace(f, 1));
+  };
+  for (int axis = 0; axis < 3; ++axis)
+    for (int s = 0; s <= n; ++s)
+      for (int a = 0; a < n; ++a)
+        for (int b = 0; b < n; ++b) add(axis, s, a, b);
+  for (std::size_t c = 0; c < cells.size(); ++c) m.add_cell(cells[c], 1, VertexId(c));
+  return m;
+}
+
+const char* const kPolyMeshFiles[] = {"points", "faces", "owner", "neighbour", "boundary", "cellZones", "faceZones"};
+
+std::map<std::string, std::string> poly_mesh_files(const fs::path& case_dir) {
+  std::map<std::string, std::string> out;
+  for (const char* f : kPolyMeshFiles) out[f] = slurp(case_dir / "constant" / "polyMesh" / f);
+  return out;
+}
+
+// Lowers the largest file this process may write (a write beyond it fails
+// with EFBIG: a full disk that needs neither root nor a mount), restored on
+// destruction.
+class FileSizeLimit {
+ public:
+  explicit FileSizeLimit(rlim_t bytes) {
+    old_handler_ = std::signal(SIGXFSZ, SIG_IGN);
+    getrlimit(RLIMIT_FSIZE, &old_);
+    rlimit r = old_;
+    r.rlim_cur = bytes;
+    setrlimit(RLIMIT_FSIZE, &r);
+  }
+  ~FileSizeLimit() {
+    setrlimit(RLIMIT_FSIZE, &old_);
+    std::signal(SIGXFSZ, old_handler_);
+  }
+
+ private:
+  rlimit old_;
+  void (*old_handler_)(int);
+};
+
+// Clears a recorded interrupt whatever the test did.
+struct InterruptReset {
+  ~InterruptReset() { clear_interrupt(); }
+};
+
+// ---------------------------------------------------------------------------
+// Interruption flag
+
+TEST(Interrupt, HandlersRecordTheSignalAndThrowIfInterruptedReportsIt) {
+  InterruptReset reset;
+  for (int sig : {SIGINT, SIGTERM}) {
+    clear_interrupt();
+    install_interrupt_handlers();
+    EXPECT_FALSE(interrupted());
+    EXPECT_NO_THROW(throw_if_interrupted());
+    ASSERT_EQ(std::raise(sig), 0);  // the process survives: the handler only records
+    EXPECT_TRUE(interrupted());
+    EXPECT_EQ(interrupt_signal(), sig);
+    try {
+      throw_if_interrupted();
+      ADD_FAILURE() << "no Interrupted";
+    } catch (const Interrupted& e) {
+      EXPECT_EQ(e.signal(), sig);
+      EXPECT_EQ(e.exit_status(), 128 + sig);
+      EXPECT_THAT(e.what(), HasSubstr("interrupted"));
+    }
+  }
+  // The handler reverts to the default after one signal (a second Ctrl-C
+  // kills a computation that does not poll).
+  struct sigaction now;
+  sigaction(SIGTERM, nullptr, &now);
+  EXPECT_EQ(now.sa_handler, SIG_DFL);
+  // An ignored signal stays ignored.
+  std::signal(SIGINT, SIG_IGN);
+  install_interrupt_handlers();
+  sigaction(SIGINT, nullptr, &now);
+  EXPECT_EQ(now.sa_handler, SIG_IGN);
+  sigaction(SIGTERM, nullptr, &now);
+  EXPECT_NE(now.sa_handler, SIG_DFL);
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
+}
+
+// ---------------------------------------------------------------------------
+// write_file_atomically
+
+TEST(AtomicFile, WritesAndReplacesOnlyOnSuccess) {
+  const fs::path d = scratch("atomic_replace");
+  const fs::path f = d / "out.vtu";
+  write_file_atomically(f, [](std::ostream& os) { os << "first\n"; });
+  EXPECT_EQ(slurp(f), "first\n");
+  write_file_atomically(f, [](std::ostream& os) { os << "second " << 42 << '\n'; });
+  EXPECT_EQ(slurp(f), "second 42\n");
+  // A callback that throws after writing: the old file stays, no temporary.
+  EXPECT_THROW(write_file_atomically(f, [](std::ostream& os) {
+                 os << std::string(3 << 20, 'x');  // beyond one chunk: bytes did reach the temporary
+                 throw std::runtime_error("injected");
+               }),
+               std::runtime_error);
+  EXPECT_EQ(slurp(f), "second 42\n");
+  EXPECT_THAT(temporaries(d), ::testing::IsEmpty());
+  EXPECT_EQ(snapshot(d).size(), 1u);
+}
+
+TEST(AtomicFile, LargeOutputsArriveWhole) {
+  const fs::path f = scratch("atomic_large") / "big.bin";
+  std::string expected;
+  write_file_atomically(f, [&](std::ostream& os) {
+    for (int i = 0; i < 300000; ++i) {  // small pieces across many chunks...
+      const std::string s = std::to_string(i) + ' ';
+      os << s;
+      expected += s;
+    }
+    const std::string block(5 << 20, 'b');  // ...and one block larger than a chunk
+    os.write(block.data(), static_cast<std::streamsize>(block.size()));
+    expected += block;
+    os.put('\n');
+    expected += '\n';
+  }, true);
+  EXPECT_EQ(slurp(f), expected);
+}
+
+TEST(AtomicFile, KeepsPermissionBitsAndSymbolicLinks) {
+  const fs::path d = scratch("atomic_perms");
+  const fs::path f = d / "out.vtu";
+  put(f, "old");
+  ASSERT_EQ(::chmod(f.c_str(), 0640), 0);
+  write_file_atomically(f, [](std::ostream& os) { os << "new"; });
+  struct stat st;
+  ASSERT_EQ(::stat(f.c_str(), &st), 0);
+  EXPECT_EQ(st.st_mode & 07777, 0640u);
+  ASSERT_EQ(::chmod(f.c_str(), 0604), 0);
+  write_file_atomically(f, [](std::ostream& os) { os << "newer"; });
+  ASSERT_EQ(::stat(f.c_str(), &st), 0);
+  EXPECT_EQ(st.st_mode & 07777, 0604u);
+
+  // A new file gets the usual 0666 & ~umask.
+  const mode_t mask = ::umask(022);
+  write_file_atomically(d / "fresh.vtu", [](std::ostream& os) { os << "x"; });
+  ::umask(mask);
+  ASSERT_EQ(::stat((d / "fresh.vtu").c_str(), &st), 0);
+  EXPECT_EQ(st.st_mode & 07777, 0644u);
+
+  // Through a symbolic link: the link stays, the file it names is replaced.
+  fs::create_symlink("out.vtu", d / "link.vtu");
+  write_file_atomically(d / "link.vtu", [](std::ostream& os) { os << "via link"; });
+  EXPECT_TRUE(fs::is_symlink(fs::symlink_status(d / "link.vtu")));
+  EXPECT_EQ(slurp(f), "via link");
+}
+
+TEST(AtomicFile, InterruptStopsTheWriteBetweenChunksAndKeepsTheOldFile) {
+  InterruptReset reset;
+  const fs::path d = scratch("atomic_interrupt");
+  const fs::path f = d / "out.vtu";
+  put(f, "previous");
+  bool finished = false;
+  EXPECT_THROW(write_file_atomically(f, [&](std::ostream& os) {
+                 os << std::string(2 << 20, 'a');
+                 request_interrupt(SIGTERM);  // as the handler would, mid-write
+                 for (int i = 0; i < 64; ++i) os << std::string(1 << 20, 'b');
+                 finished = true;
+               }),
+               Interrupted);
+  EXPECT_FALSE(finished) << "the stream must stop at the next chunk, not at the end";
+  EXPECT_EQ(slurp(f), "previous");
+  EXPECT_THAT(temporaries(d), ::testing::IsEmpty());
+  // Interrupted before it starts: nothing is created at all.
+  EXPECT_THROW(write_file_atomically(d / "new.vtu", [](std::ostream& os) { os << "x"; }), Interrupted);
+  EXPECT_FALSE(fs::exists(d / "new.vtu"));
+  // Interrupted after the last byte reached the file, before the rename: the
+  // old file stays.
+  clear_interrupt();
+  EXPECT_THROW(write_file_atomically(f, [](std::ostream& os) {
+                 os << "complete" << std::flush;
+                 request_interrupt(SIGINT);
+               }),
+               Interrupted);
+  EXPECT_EQ(slurp(f), "previous");
+  EXPECT_EQ(snapshot(d).size(), 1u);
+}
+
+TEST(AtomicFile, WriteErrorsCarryThePathAndTheSystemReason) {
+  const fs::path d = scratch("atomic_errors");
+  put(d / "plain", "a file");
+  // Under a file: ENOTDIR when the temporary is created.
+  try {
+    write_file_atomically(d / "plain" / "out.vtu", [](std::ostream& os) { os << "x"; });
+    ADD_FAILURE() << "no error";
+  } catch (const WriteError& e) {
+    EXPECT_THAT(e.what(), HasSubstr((d / "plain" / "out.vtu").string()));
+    EXPECT_THAT(e.what(), HasSubstr("Not a directory"));
+    EXPECT_EQ(e.reason(), std::error_code(ENOTDIR, std::system_category()));
+  }
+  // /proc refuses new files (even to root).
+  try {
+    write_file_atomically("/proc/polydual_out.vtu", [](std::ostream& os) { os << "x"; });
+    ADD_FAILURE() << "no error";
+  } catch (const WriteError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("/proc/polydual_out.vtu: cannot open for writing: "));
+    EXPECT_TRUE(e.reason()) << e.what();
+  }
+  // A full device: ENOSPC at the first chunk (written in place, not renamed over).
+  try {
+    write_file_atomically("/dev/full", [](std::ostream& os) { os << std::string(3 << 20, 'x'); });
+    ADD_FAILURE() << "no error";
+  } catch (const WriteError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("/dev/full: write failed: No space left on device"));
+  }
+  EXPECT_TRUE(fs::is_character_file("/dev/full"));
+  // The file system full in the middle of a file (a file size limit: EFBIG).
+  put(d / "out.vtu", "previous");
+  {
+    FileSizeLimit limit(100000);
+    try {
+      write_file_atomically(d / "out.vtu", [](std::ostream& os) { os << std::string(3 << 20, 'x'); });
+      ADD_FAILURE() << "no error";
+    } catch (const WriteError& e) {
+      EXPECT_THAT(e.what(), HasSubstr((d / "out.vtu").string() + ": write failed: File too large"));
+    }
+  }
+  EXPECT_EQ(slurp(d / "out.vtu"), "previous");
+  // A directory is never replaced by a file.
+  fs::create_directories(d / "dir.vtu");
+  EXPECT_THROW(write_file_atomically(d / "dir.vtu", [](std::ostream& os) { os << "x"; }), WriteError);
+  EXPECT_TRUE(fs::is_directory(d / "dir.vtu"));
+  EXPECT_THAT(temporaries(d), ::testing::IsEmpty());
+}
+
+// ---------------------------------------------------------------------------
+// write_directory_atomically and friends
+
+TEST(AtomicDirectory, ReplacesOnlyOnSuccessAndLeavesNoTemporary) {
+  const fs::path d = scratch("atomic_dir");
+  const fs::path mesh = d / "polyMesh";
+  auto fill = [](const std::string& tag) {
+    return [tag](const fs::path& tmp) {
+      for (const char* f : {"points", "faces"}) put(tmp / f, tag + f);
+    };
+  };
+  write_directory_atomically(mesh, fill("one:"));
+  EXPECT_EQ(slurp(mesh / "faces"), "one:faces");
+  write_directory_atomically(mesh, fill("two:"));
+  EXPECT_EQ(slurp(mesh / "points"), "two:points");
+  EXPECT_EQ(snapshot(d).size(), 3u);  // polyMesh, its two files: the old tree is gone
+  // A fill that fails half way: the previous tree stays whole.
+  EXPECT_THROW(write_directory_atomically(mesh, [](const fs::path& tmp) {
+                 put(tmp / "points", "three:points");
+                 throw std::runtime_error("injected");
+               }),
+               std::runtime_error);
+  EXPECT_EQ(slurp(mesh / "points"), "two:points");
+  EXPECT_EQ(slurp(mesh / "faces"), "two:faces");
+  EXPECT_THAT(temporaries(d), ::testing::IsEmpty());
+  // A file where the directory should be is not deleted.
+  put(d / "notadir", "keep");
+  EXPECT_THROW(write_directory_atomically(d / "notadir", fill("x")), WriteError);
+  EXPECT_EQ(slurp(d / "notadir"), "keep");
+  EXPECT_THAT(temporaries(d), ::testing::IsEmpty());
+}
+
+TEST(AtomicDirectory, RenameAsideFallbackSwapsAndRestores) {
+  const fs::path d = scratch("atomic_aside");
+  put(d / "mesh" / "points", "old");
+  put(d / "fresh" / "points", "new");
+  detail::replace_by_rename_aside(d / "fresh", d / "mesh");
+  EXPECT_EQ(slurp(d / "mesh" / "points"), "new");
+  EXPECT_FALSE(fs::exists(d / "fresh"));
+  EXPECT_THAT(temporaries(d), ::testing::IsEmpty());
+  // The new one cannot be renamed in (it does not exist): the old one is put back.
+  EXPECT_THROW(detail::replace_by_rename_aside(d / "missing", d / "mesh"), WriteError);
+  EXPECT_EQ(slurp(d / "mesh" / "points"), "new");
+  EXPECT_THAT(temporaries(d), ::testing::IsEmpty());
+}
+
+TEST(AtomicDirectory, WriteIfAbsentNeverTouchesAnExistingDirectory) {
+  const fs::path d = scratch("atomic_absent");
+  auto fill = [](const fs::path& tmp) { put(tmp / "controlDict", "ours"); };
+  EXPECT_TRUE(write_directory_if_absent(d / "system", fill));
+  EXPECT_EQ(slurp(d / "system" / "controlDict"), "ours");
+  put(d / "user" / "controlDict", "theirs");
+  EXPECT_FALSE(write_directory_if_absent(d / "user", fill));
+  EXPECT_EQ(slurp(d / "user" / "controlDict"), "theirs");
+  fs::create_directories(d / "empty");
+  EXPECT_TRUE(write_directory_if_absent(d / "empty", fill));
+  EXPECT_EQ(slurp(d / "empty" / "controlDict"), "ours");
+  EXPECT_THAT(temporaries(d), ::testing::IsEmpty());
+}
+
+// ---------------------------------------------------------------------------
+// check_output_target
+
+void expect_refused(const std::vector<std::string>& in, const fs::path& out, OutputKind kind, bool force,
+                    const std::string& why, const std::string& ext = ".vtu") {
+  try {
+    check_output_target(in, out.string(), kind, force, ext);
+    ADD_FAILURE() << out << " was accepted";
+  } catch (const UsageError& e) {
+    EXPECT_THAT(e.what(), HasSubstr(out.string())) << e.what();
+    EXPECT_THAT(e.what(), HasSubstr(why)) << e.what();
+  }
+}
+
+TEST(OutputGuard, AnInputIsNeverTheOutput) {
+  const fs::path d = scratch("guard_input");
+  const fs::path in = d / "in.msh";
+  put(in, "$MeshFormat");
+  fs::create_directories(d / "sub");
+  fs::create_symlink(in, d / "link.vtu");
+  fs::create_hard_link(in, d / "hard.vtu");
+  const std::vector<std::string> inputs{in.string()};
+  for (const fs::path& out : {in, d / "link.vtu", d / "hard.vtu", d / "sub" / ".." / "in.msh"})
+    for (bool force : {false, true}) expect_refused(inputs, out, OutputKind::File, force, "is the input");
+  // The input among several (optimize IN --primal MESH).
+  expect_refused({(d / "other").string(), in.string()}, d / "hard.vtu", OutputKind::File, true, "is the input");
+  // An input inside the polyMesh that a case output replaces.
+  put(d / "case" / "constant" / "polyMesh" / "in.msh", "x");
+  expect_refused({(d / "case" / "constant" / "polyMesh" / "in.msh").string()}, d / "case",
+                 OutputKind::FoamCase, true, "constant/polyMesh");
+  expect_refused({(d / "sub" / ".." / "case" / "constant" / "polyMesh" / "in.msh").string()},
+                 d / "sub" / ".." / "case", OutputKind::FoamCase, false, "constant/polyMesh");
+  // Other names are fine, existing or not.
+  EXPECT_NO_THROW(check_output_target(inputs, (d / "out.vtu").string(), OutputKind::File, false, ".vtu"));
+  EXPECT_NO_THROW(check_output_target(inputs, (d / "newcase").string(), OutputKind::FoamCase, false));
+  EXPECT_EQ(slurp(in), "$MeshFormat");
+}
+
+TEST(OutputGuard, FilesAreReplacedOnlyByTheirOwnKind) {
+  const fs::path d = scratch("guard_file");
+  put(d / "old.vtu", "previous run");
+  put(d / "mesh.msh", "$MeshFormat");
+  fs::create_directories(d / "dir.vtu");
+  EXPECT_NO_THROW(check_output_target({}, (d / "old.vtu").string(), OutputKind::File, false, ".vtu"));
+  expect_refused({}, d / "mesh.msh", OutputKind::File, false, "is not a .vtu file");
+  EXPECT_NO_THROW(check_output_target({}, (d / "mesh.msh").string(), OutputKind::File, true, ".vtu"));
+  EXPECT_NO_THROW(check_output_target({}, (d / "mesh.msh").string(), OutputKind::File, false, ""));
+  for (bool force : {false, true}) {
+    expect_refused({}, d / "dir.vtu", OutputKind::File, force, "is a directory");
+    expect_refused({}, d / "old.vtu", OutputKind::FoamCase, force, "is not a directory");
+  }
+  expect_refused({}, d / "old.vtu" / "x.vtu", OutputKind::File, false, "is not a directory");
+  fs::create_symlink(d / "nowhere", d / "dangling.vtu");
+  expect_refused({}, d / "dangling.vtu", OutputKind::File, false, "dangling");
+  EXPECT_NO_THROW(check_output_target({}, "/dev/null", OutputKind::File, false, ".vtu"));
+}
+
+TEST(OutputGuard, CaseDirectories) {
+  const fs::path d = scratch("guard_case");
+  fs::create_directories(d / "empty");
+  put(d / "project" / "src" / "main.cpp", "int main() {}");
+  put(d / "case_c" / "constant" / "transportProperties", "nu 1;");
+  put(d / "case_s" / "system" / "controlDict", "application simpleFoam;");
+  put(d / "odd" / "constant", "a file named constant");
+  const auto before = snapshot(d);
+  for (const char* ok : {"empty", "case_c", "case_s", "absent"})
+    EXPECT_NO_THROW(check_output_target({}, (d / ok).string(), OutputKind::FoamCase, false)) << ok;
+  expect_refused({}, d / "project", OutputKind::FoamCase, false, "neither empty nor an OpenFOAM case");
+  EXPECT_NO_THROW(check_output_target({}, (d / "project").string(), OutputKind::FoamCase, true));
+  expect_refused({}, d / "odd", OutputKind::FoamCase, true, "'constant' that is not a directory");
+  EXPECT_EQ(snapshot(d), before);  // checking touches nothing
+}
+
+// ---------------------------------------------------------------------------
+// write_foam: only constant/polyMesh (and an absent system/) are written
+
+TEST(FoamSafety, ANonCaseDirectoryIsRefusedAndLeftUntouched) {
+  const fs::path d = scratch("foam_project");
+  put(d / "src" / "main.cpp", "int main() {}");
+  put(d / "notes.txt", "my notes");
+  fs::create_symlink("notes.txt", d / "link");
+  const auto before = snapshot(d);
+  try {
+    write_foam(hex_block(1, 1), d.string());
+    ADD_FAILURE() << "accepted";
+  } catch (const UsageError& e) {
+    EXPECT_THAT(e.what(), HasSubstr(d.string()));
+    EXPECT_THAT(e.what(), HasSubstr("neither empty nor an OpenFOAM case"));
+  }
+  EXPECT_EQ(snapshot(d), before);
+
+  // --force: the case is added, every other file is kept as it was.
+  FoamOptions force;
+  force.force = true;
+  write_foam(hex_block(1, 1), d.string(), force);
+  auto after = snapshot(d);
+  for (const auto& [name, contents] : before) EXPECT_EQ(after[name], contents) << name;
+  for (const char* f : kPolyMeshFiles) EXPECT_TRUE(fs::is_regular_file(d / "constant" / "polyMesh" / f)) << f;
+  for (const char* f : {"controlDict", "fvSchemes", "fvSolution"}) EXPECT_TRUE(fs::is_regular_file(d / "system" / f));
+  EXPECT_THAT(temporaries(d), ::testing::IsEmpty());
+}
+
+TEST(FoamSafety, AnExistingCaseKeepsEverythingButItsPolyMesh) {
+  const fs::path d = scratch("foam_case");
+  put(d / "0" / "U", "internalField uniform (1 0 0);");
+  put(d / "system" / "controlDict", "application simpleFoam;");
+  put(d / "system" / "fvSchemes", "user schemes");
+  put(d / "constant" / "transportProperties", "nu 1e-5;");
+  put(d / "constant" / "polyMesh" / "points", "an older mesh");
+  put(d / "constant" / "polyMesh" / "stale", "from the older mesh");
+  put(d / "Allrun", "#!/bin/sh");
+  auto before = snapshot(d);
+  write_foam(hex_block(1, 1), d.string());
+  auto after = snapshot(d);
+  for (auto& [name, contents] : before)
+    if (name.rfind("constant/polyMesh", 0) != 0) EXPECT_EQ(after[name], contents) << name;
+  EXPECT_FALSE(fs::exists(d / "system" / "fvSolution"));  // the user's system/ is theirs
+  EXPECT_FALSE(fs::exists(d / "constant" / "polyMesh" / "stale"));  // the polyMesh is replaced whole
+  EXPECT_NE(slurp(d / "constant" / "polyMesh" / "points"), "an older mesh");
+  EXPECT_THAT(temporaries(d), ::testing::IsEmpty());
+}
+
+TEST(FoamSafety, ARerunReplacesThePreviousPolyMesh) {
+  const fs::path d = scratch("foam_rerun") / "case";
+  write_foam(hex_block(1, 1), d.string());
+  const auto first = poly_mesh_files(d);
+  const std::string control = slurp(d / "system" / "controlDict");
+  write_foam(hex_block(2, 3), d.string());
+  const auto second = poly_mesh_files(d);
+  EXPECT_NE(first.at("points"), second.at("points"));
+  EXPECT_NE(first.at("owner"), second.at("owner"));
+  EXPECT_EQ(slurp(d / "system" / "controlDict"), control);
+  write_foam(hex_block(1, 1), d.string());
+  EXPECT_EQ(poly_mesh_files(d), first);  // same mesh, same bytes
+  EXPECT_THAT(temporaries(d.parent_path()), ::testing::IsEmpty());
+}
+
+TEST(FoamSafety, AFailureMidWriteKeepsThePreviousCaseAndNoTemporary) {
+  const fs::path d = scratch("foam_midwrite") / "case";
+  write_foam(hex_block(1, 1), d.string());
+  put(d / "0" / "p", "user field");
+  const auto before = snapshot(d.parent_path());
+  {
+    // points (3.2 kB) fits, faces (14 kB) does not: a failure with some
+    // files of the new polyMesh complete and one half written.
+    FileSizeLimit limit(8000);
+    try {
+      write_foam(hex_block(6, 1), d.string());
+      ADD_FAILURE() << "no error";
+    } catch (const WriteError& e) {
+      EXPECT_THAT(e.what(), HasSubstr("faces: write failed: File too large"));
+    }
+  }
+  EXPECT_EQ(snapshot(d.parent_path()), before);
+  // The same failure on a fresh case leaves nothing at all.
+  const fs::path fresh = d.parent_path() / "deep" / "fresh";
+  {
+    FileSizeLimit limit(8000);
+    EXPECT_THROW(write_foam(hex_block(6, 1), fresh.string()), WriteError);
+  }
+  EXPECT_FALSE(fs::exists(d.parent_path() / "deep"));
+  EXPECT_EQ(snapshot(d.parent_path()), before);
+}
+
+TEST(FoamSafety, AnInterruptKeepsThePreviousCase) {
+  InterruptReset reset;
+  const fs::path d = scratch("foam_interrupt") / "case";
+  write_foam(hex_block(1, 1), d.string());
+  const auto before = snapshot(d.parent_path());
+  request_interrupt(SIGTERM);
+  EXPECT_THROW(write_foam(hex_block(2, 1), d.string()), Interrupted);
+  EXPECT_THROW(write_foam(hex_block(2, 1), (d.parent_path() / "fresh").string()), Interrupted);
+  EXPECT_EQ(snapshot(d.parent_path()), before);
+}
+
+// ---------------------------------------------------------------------------
+// The command applies the guard before any work (lib/cli/main.cpp)
+
+struct CmdResult {
+  int code;
+  std::string out;
+};
+CmdResult run(const std::string& args) {
+  const std::string cmd = std::string(POLYDUAL_BINARY) + " " + args + " 2>&1";
+  CmdResult r{0, {}};
+  FILE* p = popen(cmd.c_str(), "r");
+  std::array<char, 4096> buf;
+  while (std::size_t n = std::fread(buf.data(), 1, buf.size(), p)) r.out.append(buf.data(), n);
+  const int status = pclose(p);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+TEST(CommandSafety, ConvertRefusesToReplaceItsInputOrAUsersDirectory) {
+  const fs::path d = scratch("command");
+  const fs::path in = d / "in.msh";
+  fs::copy_file(fs::path(POLYDUAL_TEST_DATA) / "cube5.msh", in);
+  fs::create_symlink(in, d / "link.vtu");
+  put(d / "project" / "src" / "main.cpp", "int main() {}");
+  const auto before = snapshot(d);
+  for (const std::string out : {in.string(), (d / "link.vtu").string(), (d / "project").string()}) {
+    const CmdResult r = run("convert " + in.string() + " -o " + out + " --optimize none");
+    EXPECT_EQ(r.code, 2) << r.out;
+    EXPECT_THAT(r.out, HasSubstr("usage error: output '" + out + "'"));
+  }
+  EXPECT_EQ(snapshot(d), before);
+  // A rerun over its own VTU output is fine.
+  for (int i = 0; i < 2; ++i) {
+    const CmdResult r = run("convert " + in.string() + " -o " + (d / "out.vtu").string() + " --optimize none");
+    EXPECT_EQ(r.code, 0) << r.out;
+  }
+  EXPECT_THAT(temporaries(d), ::testing::IsEmpty());
+}
+
+}  // namespace
+}  // namespace polydual
