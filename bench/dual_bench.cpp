@@ -1,4 +1,4 @@
-// Dual construction and star-test benchmarks (SPEC §12).
+// Dual construction and star-test benchmarks (design §12).
 //
 //   build/bench/dual_bench --benchmark_counters_tabular=true
 //   POLYDUAL_BENCH_SIZES=100000,1000000 build/bench/dual_bench ...
@@ -91,7 +91,7 @@ void BM_ReadClassify(benchmark::State& st, Domain d, std::size_t n) {
   st.counters["peak_rss_MB"] = double(status_kb("VmHWM:")) / 1024.0;
 }
 
-// classify + build_dual (with cleanup) on one soup, on ONE thread (SPEC §12's
+// classify + build_dual (with cleanup) on one soup, on ONE thread (design §12's
 // single-threaded figure: the TBB stages are limited to one worker here).
 // Counters: us per input tet (CPU), peak memory above the resident input, and
 // the stages' share in us per tet (wall, same thread).
@@ -163,7 +163,7 @@ void classify_dual_counters(benchmark::State& st, const TetSoup& soup) {
 
 void BM_ClassifyDual(benchmark::State& st, Domain d, std::size_t n) { classify_dual_counters(st, soup_for(d, n)); }
 
-// Flatness in the mesh size (SPEC §12: 10k to 10M): Delaunay meshes of random
+// Flatness in the mesh size (design §12: 10k to 10M): Delaunay meshes of random
 // points in the unit box (lib/generate/random_mesh.h), about 6.5 tets per point.
 std::vector<std::size_t> random_sizes() {
   std::vector<std::size_t> out;

@@ -1,4 +1,4 @@
-// Optimiser benchmark (SPEC §12): local Newton (analytic default, finite-difference
+// Optimiser benchmark (design §12): local Newton (analytic default, finite-difference
 // and exact derivatives) and global L-BFGS on a perturbed block of 22^3 = 10,648 hex
 // cells with some cells tangled. Counters: vertex updates per second, invalid
 // cells before/after, time to the last iteration, final mean quality.

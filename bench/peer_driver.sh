@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # End-to-end comparison with OpenFOAM's polyDualMesh on the same Gmsh meshes,
-# in one run (SPEC §12). For each domain and size: polydual convert without
+# in one run (design §12). For each domain and size: polydual convert without
 # and with its default optimisation (OpenFOAM output), and gmshToFoam +
 # polyDualMesh, all under /usr/bin/time -v, then checkMesh on every case.
 # Prints one JSON line per run and a Markdown table at the end.

@@ -1,4 +1,4 @@
-// Dual construction (SPEC §4) and its invariants (SPEC §10) on Kuhn lattices
+// Dual construction (design §4) and its invariants (design §10) on Kuhn lattices
 // and random classified tet meshes.
 #include <gtest/gtest.h>
 

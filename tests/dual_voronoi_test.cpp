@@ -1,7 +1,7 @@
 // On a Delaunay mesh, the dual face of an interior edge whose tets are all
 // well-centred is a Voronoi face: its points are the tets' circumcentres, all
 // equidistant from the edge's endpoints, so the face is planar and
-// perpendicular to the edge (SPEC §4, paper §2.1).
+// perpendicular to the edge (design §4, paper §2.1).
 #include <gtest/gtest.h>
 
 #include <map>

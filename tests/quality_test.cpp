@@ -209,7 +209,7 @@ TEST(Corner, AdjointGradientMatchesJet) {
   }
 }
 
-// SPEC §6's cube check, done honestly: Q2's corners on a unit cube are NOT right
+// design §6's cube check, done honestly: Q2's corners on a unit cube are NOT right
 // corners (e3 points to the cell centre): edges (0,1,0), (1,0,0), (.5,.5,-.5)
 // give A = 2, L = 2.75, V = 0.5, kappa = 2 sqrt(5.5). Q1's corner at a of tet
 // (a,b,F,R): (F-a, b-a, R-a) = ((.5,.5,0), (1,0,0), (.5,.5,-.5)) gives

@@ -1,4 +1,4 @@
-// Classification of a mesh entity on the geometric model (SPEC §1): the
+// Classification of a mesh entity on the geometric model (design §1): the
 // dimension and tag of the lowest-dimension model entity it lies on.
 #pragma once
 #include <compare>

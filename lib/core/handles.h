@@ -1,4 +1,4 @@
-// Typed index handles with a named invalid value (STYLE: no raw ids, no magic -1).
+// Typed index handles with a named invalid value (docs/design.md, Conventions: no raw ids, no magic -1).
 #pragma once
 #include <compare>
 #include <cstdint>

@@ -1,4 +1,4 @@
-// Paper Algorithm 1, step by step (SPEC §4):
+// Paper Algorithm 1, step by step (design §4):
 //   STEP 1-4  dual points: tet and model-face triangle central points, model-edge
 //             midpoints, model vertices;
 //   hints     for STEP 9: exact coincidences and short tet-centre edges, found

@@ -1,4 +1,4 @@
-// The dual mesh (SPEC §4, paper Algorithm 1): one polyhedral cell per side of
+// The dual mesh (design §4, paper Algorithm 1): one polyhedral cell per side of
 // every primal vertex, conformal across interfaces and fractures, with every
 // model vertex, edge and face represented.
 //
@@ -19,7 +19,7 @@
 namespace polydual {
 
 struct DualParams {
-  // Run the cleanup (SPEC §4.9): exact merge of coincident dual points, then
+  // Run the cleanup (design §4.9): exact merge of coincident dual points, then
   // collapse of short edges. Off: build_dual_draft() finds no hints and
   // build_dual() skips cleanup_dual().
   bool cleanup = true;

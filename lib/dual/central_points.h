@@ -1,4 +1,4 @@
-// Central points of tets and triangles (SPEC §4 steps 1-2, paper §2.4).
+// Central points of tets and triangles (design §4 steps 1-2, paper §2.4).
 #pragma once
 #include <array>
 

@@ -1,4 +1,4 @@
-// Cleanup of the draft dual (SPEC §4 step 9, paper §2.8): merge the points the
+// Cleanup of the draft dual (design §4 step 9, paper §2.8): merge the points the
 // builder found to coincide exactly, collapse short edges between points of the
 // same classification, rewrite face loops, drop faces that degenerate below
 // three distinct points, and drop points no face uses. Reads and writes only

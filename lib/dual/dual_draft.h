@@ -1,4 +1,4 @@
-// The dual before its cleanup and its cells (SPEC §4 steps 1-7): what
+// The dual before its cleanup and its cells (design §4 steps 1-7): what
 // build_dual_draft() produces and cleanup_dual() and assemble_cells() consume.
 #pragma once
 #include <cstddef>

@@ -1,4 +1,4 @@
-// Sides of primal vertices (SPEC §1): the tets around v connected through
+// Sides of primal vertices (design §1): the tets around v connected through
 // triangles not on a model face. One dual cell per side.
 #pragma once
 #include <algorithm>

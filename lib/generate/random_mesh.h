@@ -1,5 +1,5 @@
 // Random and structured classified tet meshes for property tests and fuzzing
-// (SPEC §10: every invariant is checked on generated meshes). Deterministic and
+// (design §10: every invariant is checked on generated meshes). Deterministic and
 // portable: the same parameters give the same mesh on every platform.
 #pragma once
 #include <cstdint>

@@ -1,4 +1,4 @@
-// OpenFOAM polyMesh writer (SPEC §9): CASE/constant/polyMesh/{points, faces,
+// OpenFOAM polyMesh writer (design §9): CASE/constant/polyMesh/{points, faces,
 // owner, neighbour, boundary, cellZones, faceZones} plus, optionally, a minimal
 // CASE/system so OpenFOAM's tools (checkMesh) run on the case. Only
 // constant/polyMesh is ever replaced; a user's 0/, system/, other files in

@@ -1,4 +1,4 @@
-// Gmsh .msh 2.2 and 4.1 reader, ASCII and binary (SPEC §2).
+// Gmsh .msh 2.2 and 4.1 reader, ASCII and binary (design §2).
 //
 // Written by hand rather than through libgmsh because (1) errors must name the
 // exact line or byte, (2) the fuzzers need a memory-buffer API, and (3) libgmsh

@@ -1,4 +1,4 @@
-// VTK XML UnstructuredGrid (.vtu, version 1.0) writer for PolyMesh (SPEC §9):
+// VTK XML UnstructuredGrid (.vtu, version 1.0) writer for PolyMesh (design §9):
 // one VTK_POLYHEDRON cell per dual cell, opens in ParaView and is read back
 // exactly by read_vtu_poly (lib/io/vtu_poly_reader.h), in every format of
 // VtuOptions (ascii, inline base64, appended raw; zlib-compressed or not).

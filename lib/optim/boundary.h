@@ -1,6 +1,6 @@
 // Boundary constraints of the optimisers (paper 3.3: "movement of mesh vertices
 // on the boundary was constrained to the original facetization by use of a
-// dynamically changing local parametric space"; SPEC §7).
+// dynamically changing local parametric space"; design §7).
 //
 // The facetisation is the primal mesh's triangles classified on model faces
 // (ModelRef{2,T}) and edges classified on model edges ({1,T}). A dual point

@@ -1,4 +1,4 @@
-// The global scheme (SPEC §7): the same objective over all free point coordinates
+// The global scheme (design §7): the same objective over all free point coordinates
 // at once, minimised by Ceres.
 //
 // Why ceres::GradientProblem + L-BFGS and not least squares on sqrt(kappa_mod):

@@ -1,4 +1,4 @@
-// The optimisation objective (paper 3.3, SPEC §7): the sum of kappa_mod over all
+// The optimisation objective (paper 3.3, design §7): the sum of kappa_mod over all
 // corners of the chosen metric (Q1 or Q2), with delta(V) of eq. 3 scaled by a
 // per-cell V0 fixed for the run.
 #pragma once

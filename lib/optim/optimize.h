@@ -1,4 +1,4 @@
-// Untangling and smoothing of a polyhedral mesh (paper 3.3, SPEC §7): minimise
+// Untangling and smoothing of a polyhedral mesh (paper 3.3, design §7): minimise
 // the sum of kappa_mod over all corners of the chosen metric, with the paper's
 // local Gauss-Seidel Newton scheme or a global Ceres L-BFGS solve, keeping boundary
 // points on the original facetisation and never turning a valid cell invalid.

@@ -1,4 +1,4 @@
-// The only place polydual decides signs (STYLE: exactness lives in one place).
+// The only place polydual decides signs (docs/design.md, Conventions: exactness lives in one place).
 // Every function here is EXACT: it returns the sign of the real-number
 // expression of its double inputs, whatever the rounding. Each runs a floating
 // point filter first and an exact fallback on dyadic numbers (CGAL::Mpzf) or
@@ -25,7 +25,7 @@ inline Sign insphere(const Point3& a, const Point3& b, const Point3& c, const Po
 
 // Signs of the barycentric coordinates of the circumcenter of a positive tet
 // (a,b,c,d) with respect to its vertices, in that order. The closed tet
-// contains its circumcenter iff none is Negative (well-centred, SPEC §4.1).
+// contains its circumcenter iff none is Negative (well-centred, design §4.1).
 void circumcenter_barycentric_signs(const Point3& a, const Point3& b, const Point3& c,
                                     const Point3& d, Sign out[4]);
 
@@ -45,7 +45,7 @@ Point3 circumcenter_with_signs(const Point3& a, const Point3& b, const Point3& c
 void triangle_circumcenter_barycentric_signs(const Point3& a, const Point3& b, const Point3& c,
                                              Sign out[3]);
 
-// The star-shaped test's decomposition tet (SPEC §5). With F the mean of
+// The star-shaped test's decomposition tet (design §5). With F the mean of
 // `face` and R the mean of `cell`, returns the sign of det[a-R, b-R, F-R]
 // (signed volume of (R,a,b,F)): Positive is the valid orientation when (a,b) is an
 // edge of the face in its outward order. Computed as the sign of

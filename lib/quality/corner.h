@@ -1,4 +1,4 @@
-// Condition number of a trivalent corner (paper 3.2, eq. 1-3; SPEC §6), written
+// Condition number of a trivalent corner (paper 3.2, eq. 1-3; design §6), written
 // as templates so that one text serves doubles, finite differences and
 // ceres::Jet (exact derivatives).
 //

@@ -1,5 +1,5 @@
 // Second-order derivatives of one corner's kappa_mod with respect to one mesh
-// point (the analytic Newton model of the local scheme, SPEC §7; derivation in
+// point (the analytic Newton model of the local scheme, design §7; derivation in
 // proofs/quality.md §6).
 #include <cmath>
 

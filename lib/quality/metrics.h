@@ -1,4 +1,4 @@
-// Element quality from corner condition numbers (paper 3.2, SPEC §6).
+// Element quality from corner condition numbers (paper 3.2, design §6).
 // A cell's quality is the mean of kappa/3 over its corners under Q1 (symmetric
 // decomposition corners at the original vertices) or Q2 (region-centre corners):
 // 1 would be all right unit corners; larger is worse. Note that neither metric
@@ -47,7 +47,7 @@ QualityStats quality_stats(const PolyMesh& mesh, Metric m);
 std::vector<double> cell_reference_volumes(const MeshStencil& s, Metric m,
                                            std::span<const Point3> points);
 
-// Sum of kappa_mod over the corners of cell c (the objective's cell term, SPEC §7).
+// Sum of kappa_mod over the corners of cell c (the objective's cell term, design §7).
 double cell_energy(const MeshStencil& s, std::uint32_t c, Metric m, std::span<const Point3> points,
                    double V0, double c_delta);
 

@@ -1,4 +1,4 @@
-// The exact star-shaped validity test (paper 3.1, SPEC §5).
+// The exact star-shaped validity test (paper 3.1, design §5).
 // For every face f of cell c and every edge (a,b) of f in c's outward order, the
 // decomposition tet (a, b, F_f, R_c) with F = mean of f's points and R = mean of
 // c's distinct points must be strictly positive (decomposition_tet_sign, exact).

@@ -11,7 +11,7 @@
 
 namespace polydual {
 
-// Q1 = symmetric decomposition corners, Q2 = region-centre corners (SPEC §6).
+// Q1 = symmetric decomposition corners, Q2 = region-centre corners (design §6).
 enum class Metric : std::uint8_t { Q1 = 1, Q2 = 2 };
 
 struct MeshStencil {
@@ -54,7 +54,7 @@ MeshStencil build_stencil(const PolyMesh& mesh);
 // callers can make one point a ceres::Jet.
 //  Q1: for each loop edge (a,b), tet (a,b,F,R): corner at a = (F-a, b-a, R-a),
 //      corner at b = (a-b, F-b, R-b); V = 6 vol(R,a,b,F) > 0 iff the decomposition
-//      tet is valid (SPEC §5), so a positive Q1 corner is a valid star tet.
+//      tet is valid (design §5), so a positive Q1 corner is a valid star tet.
 //  Q2: for each loop vertex v (prev p, next n): corner (p-v, n-v, R-v).
 template <class T, class Pos, class Fn>
 void for_each_corner(const MeshStencil& s, std::uint32_t c, Metric m, const Pos& pos, Fn&& fn) {

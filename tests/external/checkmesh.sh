@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Slow external check (SPEC §9): OpenFOAM's own checkMesh accepts the polyMesh
+# Slow external check (design §9): OpenFOAM's own checkMesh accepts the polyMesh
 # that `polydual convert --format foam` writes for every demo domain.
 # Topology failures and missing zones fail the test; the geometry results are
 # recorded in SCRATCH_DIR/<domain>_checkMesh.log and summarised, not judged.

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Smoke test of the experiments harness (SPEC §11): experiments/run.py --smoke
+# Smoke test of the experiments harness (design §11): experiments/run.py --smoke
 # regenerates, at ~2k tets and with the fast variants only, every record, table
 # and figure; this checks that they all exist and are not empty. A few minutes.
 # Needs Debian's /usr/bin/python3 (python3-vtk9, matplotlib, meshio), gmsh's

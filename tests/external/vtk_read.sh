@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Slow external check (SPEC §9): the .vtu that `polydual convert` writes opens in
+# Slow external check (design §9): the .vtu that `polydual convert` writes opens in
 # VTK itself, with the reported number of cells, all VTK_POLYHEDRON with faces.
 # usage: vtk_read.sh POLYDUAL_BINARY SCRATCH_DIR
 set -euo pipefail
