@@ -19,7 +19,7 @@
 #include <unordered_map>
 
 #include "classify/spatial_order.h"
-#include "classify/union_find.h"
+#include "core/union_find.h"
 #include "core/radix_sort.h"
 #include "core/error.h"
 #include "core/param_range.h"

@@ -4,7 +4,7 @@
 #include <chrono>
 #include <cstring>
 
-#include "classify/union_find.h"
+#include "core/union_find.h"
 
 namespace polydual {
 
