@@ -303,6 +303,14 @@ TEST(Validate, BadOwnerAndNeighbour) {
     EXPECT_GE(r.face_errors, 1u);
     EXPECT_FALSE(r.ok());
   }
+  {  // kinds that disagree with the neighbours: External iff no neighbour
+    HandMesh h = box_row(2);
+    h.faces[1].kind = FaceKind::External;  // the shared face
+    EXPECT_EQ(validate(h.build()).face_errors, 1u);
+    h = box_row(2);
+    h.faces[0].kind = FaceKind::Interface;  // an outer face
+    EXPECT_EQ(validate(h.build()).face_errors, 1u);
+  }
   {  // a face whose owner does not list it (listed by the wrong cell)
     HandMesh h = box_row(2);
     h.faces[4].owner = 1;  // a y-face of box 0, listed by box 0
@@ -377,6 +385,34 @@ TEST(Validate, ModelEdgeNotCovered) {
   const ValidationReport r = validate(pm, &p.primal);
   EXPECT_EQ(r.missing_model_entities, only("model edge " + std::to_string(edge.tag)));
   EXPECT_FALSE(r.ok());
+}
+
+TEST(Validate, ModelEdgeWithAPointOnItButNoDualEdgeAlongIt) {
+  // Covered means dual edges along the edge, not just a point classified on
+  // it: keep one point of the edge, away from its model vertices, and move
+  // the others to a model face.
+  const Pipeline& p = cube_domain();
+  const ModelEntity& edge = p.primal.model().entities[1].front();
+  PolyMesh pm = p.dual;
+  std::vector<std::uint32_t> on_edge;
+  for (std::uint32_t q = 0; q < pm.num_points(); ++q)
+    if (pm.point_class[q] == ModelRef{1, edge.tag}) on_edge.push_back(q);
+  auto next_to_model_vertex = [&](std::uint32_t q) {
+    for (std::size_t f = 0; f < pm.num_faces(); ++f) {
+      const auto loop = pm.face(FaceId(f));
+      for (std::size_t k = 0; k < loop.size(); ++k)
+        if (loop[k].idx == q && (pm.point_class[loop[(k + 1) % loop.size()].idx].dim == 0 ||
+                                 pm.point_class[loop[(k + loop.size() - 1) % loop.size()].idx].dim == 0))
+          return true;
+    }
+    return false;
+  };
+  const auto keep = std::find_if_not(on_edge.begin(), on_edge.end(), next_to_model_vertex);
+  ASSERT_NE(keep, on_edge.end());
+  for (std::uint32_t q : on_edge)
+    if (q != *keep) pm.point_class[q] = ModelRef{2, edge.bounds.front()};
+  const ValidationReport r = validate(pm, &p.primal);
+  EXPECT_EQ(r.missing_model_entities, only("model edge " + std::to_string(edge.tag)));
 }
 
 TEST(Validate, ModelFaceWithoutFacesOfItsTag) {
