@@ -1,6 +1,8 @@
 #include "core/json.h"
 
+#include <charconv>
 #include <cstdio>
+#include <locale>
 
 namespace polydual {
 
@@ -21,7 +23,7 @@ Json& Json::push(Json value) {
 }
 
 Json* Json::find(const std::string& key) {
-  return const_cast<Json*>(static_cast<const Json*>(this)->find(key));
+  return const_cast<Json*>(static_cast<const Json&>(*this).find(key));
 }
 
 const Json* Json::find(const std::string& key) const {
@@ -53,6 +55,19 @@ static void write_string(std::ostringstream& os, const std::string& s) {
   os << '"';
 }
 
+static void write_double(std::ostringstream& os, double d) {
+  if (!std::isfinite(d)) {
+    os << "null";
+  } else if (d == std::floor(d) && std::fabs(d) < 1e15) {
+    if (std::signbit(d)) os << '-';  // keeps -0 (the cast below would drop its sign)
+    os << static_cast<long long>(std::fabs(d));
+  } else {
+    char buf[32];
+    const auto res = std::to_chars(buf, buf + sizeof buf, d, std::chars_format::general, 17);
+    os.write(buf, res.ptr - buf);
+  }
+}
+
 void Json::write(std::ostringstream& os, int indent, int depth) const {
   auto nl = [&](int d) {
     if (indent <= 0) return;
@@ -63,15 +78,11 @@ void Json::write(std::ostringstream& os, int indent, int depth) const {
   } else if (auto b = std::get_if<bool>(&v_)) {
     os << (*b ? "true" : "false");
   } else if (auto d = std::get_if<double>(&v_)) {
-    if (!std::isfinite(*d)) {
-      os << "null";
-    } else if (integral_ || (*d == std::floor(*d) && std::fabs(*d) < 1e15)) {
-      os << static_cast<long long>(*d);
-    } else {
-      char buf[32];
-      std::snprintf(buf, sizeof buf, "%.17g", *d);
-      os << buf;
-    }
+    write_double(os, *d);
+  } else if (auto i = std::get_if<std::int64_t>(&v_)) {
+    os << *i;
+  } else if (auto u = std::get_if<std::uint64_t>(&v_)) {
+    os << *u;
   } else if (auto s = std::get_if<std::string>(&v_)) {
     write_string(os, *s);
   } else if (auto o = std::get_if<Object>(&v_)) {
@@ -103,6 +114,7 @@ void Json::write(std::ostringstream& os, int indent, int depth) const {
 
 std::string Json::dump(int indent) const {
   std::ostringstream os;
+  os.imbue(std::locale::classic());  // no digit grouping from a global locale
   write(os, indent, 0);
   return os.str();
 }

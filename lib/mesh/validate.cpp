@@ -1,8 +1,12 @@
 #include "mesh/validate.h"
 
 #include <algorithm>
+#include <cmath>
 #include <set>
-#include <unordered_map>
+#include <tuple>
+#include <utility>
+
+#include "predicates/predicates.h"
 
 namespace polydual {
 
@@ -25,59 +29,193 @@ double cell_volume(const PolyMesh& pm, CellId c) {
   return vol;
 }
 
-ValidationReport validate(const PolyMesh& pm, const ClassifiedTetMesh* primal) {
-  ValidationReport r;
-  r.cells = pm.num_cells();
-  r.faces = pm.num_faces();
-  r.points = pm.num_points();
+namespace {
+
+// Per face: its loop, owner, neighbour and kind on their own. Returns which
+// faces have every point id in range (the later phases read only those loops).
+std::vector<bool> check_faces(const PolyMesh& pm, ValidationReport& r) {
+  std::vector<bool> loop_in_range(pm.num_faces(), true);
+  std::vector<PointId> s;
   for (std::size_t f = 0; f < pm.num_faces(); ++f) {
-    auto loop = pm.face(FaceId(f));
-    std::vector<PointId> s(loop.begin(), loop.end());
+    const auto loop = pm.face(FaceId(f));
+    s.assign(loop.begin(), loop.end());
     std::sort(s.begin(), s.end());
-    bool bad = loop.size() < 3 || std::adjacent_find(s.begin(), s.end()) != s.end() ||
-               !pm.face_owner[f].valid() || pm.face_owner[f].idx >= pm.num_cells() ||
-               (pm.face_neighbour[f].valid() && pm.face_neighbour[f].idx >= pm.num_cells()) ||
-               (pm.face_kind[f] == FaceKind::External) != !pm.face_neighbour[f].valid();
+    loop_in_range[f] = s.empty() || s.back().idx < pm.num_points();
+    const CellId own = pm.face_owner[f], nb = pm.face_neighbour[f];
+    const bool bad = loop.size() < 3 || !loop_in_range[f] || std::adjacent_find(s.begin(), s.end()) != s.end() ||
+                     !own.valid() || own.idx >= pm.num_cells() || (nb.valid() && nb.idx >= pm.num_cells()) ||
+                     (pm.face_kind[f] == FaceKind::External) != !nb.valid();
     r.face_errors += bad;
   }
-  std::unordered_map<std::uint64_t, int> bal, uses;
-  for (std::size_t c = 0; c < pm.num_cells(); ++c) {
-    bal.clear();
-    uses.clear();
-    std::set<std::uint32_t> faces_seen;
-    bool slit = false;
+  return loop_in_range;
+}
+
+// Every half-face listed by the cell it belongs to, exactly once; none listed
+// for a face without a neighbour. A reference to no face or from the wrong
+// cell is an error of its own.
+void check_half_face_references(const PolyMesh& pm, ValidationReport& r) {
+  std::vector<std::uint8_t> refs(2 * pm.num_faces(), 0);
+  for (std::size_t c = 0; c < pm.num_cells(); ++c)
     for (HalfFace h : pm.cell(CellId(c))) {
-      if (pm.half_face_cell(h) != CellId(c)) ++r.face_errors;
-      if (!faces_seen.insert(h.face().idx).second) slit = true;
+      if (h.face().idx >= pm.num_faces() || pm.half_face_cell(h) != CellId(c)) {
+        ++r.face_errors;
+        continue;
+      }
+      refs[h.code] = std::uint8_t(std::min(refs[h.code] + 1, 2));
+    }
+  for (std::size_t f = 0; f < pm.num_faces(); ++f) {
+    const int expect_neighbour = pm.face_neighbour[f].valid() ? 1 : 0;
+    r.face_errors += refs[2 * f] != 1 || refs[2 * f + 1] != expect_neighbour;
+  }
+}
+
+// Closure, orientation, slits and volume of every cell. An edge (a, b) of a
+// half-face loop counts forward when a < b: a closed cell uses each edge as
+// often forward as backward; a reversed face makes some edge's two uses point
+// the same way.
+void check_cells(const PolyMesh& pm, const std::vector<bool>& loop_in_range, ValidationReport& r) {
+  std::vector<std::pair<std::uint64_t, int>> edges;  // (edge key, +1 forward / -1 backward)
+  std::vector<std::uint32_t> faces_seen;
+  for (std::size_t c = 0; c < pm.num_cells(); ++c) {
+    edges.clear();
+    faces_seen.clear();
+    bool sound = true;  // every half-face names a face whose points exist
+    for (HalfFace h : pm.cell(CellId(c))) {
+      if (h.face().idx >= pm.num_faces() || !loop_in_range[h.face().idx]) {
+        sound = false;
+        continue;
+      }
+      faces_seen.push_back(h.face().idx);
       const auto loop = pm.oriented_loop(h);
       for (std::size_t k = 0; k < loop.size(); ++k) {
-        std::uint32_t a = loop[k].idx, b = loop[(k + 1) % loop.size()].idx;
-        std::uint64_t key = (std::uint64_t(std::min(a, b)) << 32) | std::max(a, b);
-        bal[key] += a < b ? 1 : -1;
-        uses[key] += 1;
+        const std::uint32_t a = loop[k].idx, b = loop[(k + 1) % loop.size()].idx;
+        edges.emplace_back((std::uint64_t(std::min(a, b)) << 32) | std::max(a, b), a < b ? 1 : -1);
       }
     }
-    bool closed = std::all_of(bal.begin(), bal.end(), [](auto& kv) { return kv.second == 0; });
-    bool manifold = closed && std::all_of(uses.begin(), uses.end(), [](auto& kv) { return kv.second == 2; });
+    std::sort(edges.begin(), edges.end());
+    bool closed = true, manifold = true, misoriented = false;
+    for (std::size_t i = 0; i < edges.size();) {
+      std::size_t j = i;
+      int balance = 0;
+      for (; j < edges.size() && edges[j].first == edges[i].first; ++j) balance += edges[j].second;
+      closed &= balance == 0;
+      manifold &= j - i == 2;
+      misoriented |= std::abs(balance) >= 2;
+      i = j;
+    }
+    std::sort(faces_seen.begin(), faces_seen.end());
+    const bool slit = std::adjacent_find(faces_seen.begin(), faces_seen.end()) != faces_seen.end();
     r.closed_cells += closed;
-    r.manifold_cells += manifold;
+    r.manifold_cells += closed && manifold;
+    r.misoriented_cells += misoriented;
     r.slit_cells += slit;
     if (!closed && r.open_cells.size() < 100) r.open_cells.push_back(CellId(c));
+    if (!sound) continue;
     const double v = cell_volume(pm, CellId(c));
     if (closed && !slit && v <= 0) ++r.negative_volume_cells;
     r.material_volume[pm.cell_material[c]] += v;
   }
+}
+
+// SPEC §10: every model vertex is a dual point (at its place), every model edge
+// is covered by dual edges, every model face by dual faces with its tag.
+void check_model_entities(const PolyMesh& pm, const std::vector<bool>& loop_in_range,
+                          const ClassifiedTetMesh& primal, ValidationReport& r) {
+  using Placed = std::tuple<std::int32_t, double, double, double>;  // (tag, x, y, z)
+  std::set<Placed> model_vertices;
+  for (std::size_t v = 0; v < primal.num_vertices(); ++v)
+    if (const ModelRef c = primal.vertex_class(VertexId(v)); c.dim == 0) {
+      const Point3& x = primal.point(VertexId(v));
+      model_vertices.insert({c.tag, x.x, x.y, x.z});
+    }
+  std::set<std::pair<int, std::int32_t>> have;
+  for (std::size_t p = 0; p < pm.num_points(); ++p)
+    if (const ModelRef c = pm.point_class[p];
+        c.dim == 0 && model_vertices.count({c.tag, pm.points[p].x, pm.points[p].y, pm.points[p].z}))
+      have.insert({0, c.tag});
+  // A dual edge lies on model edge e when one end is on e and the other on e
+  // or on a model vertex that bounds e.
+  std::set<std::pair<std::int32_t, std::int32_t>> edge_vertex;  // (edge tag, vertex tag)
+  for (const ModelEntity& v : primal.model().entities[0])
+    for (std::int32_t e : v.bounds) edge_vertex.insert({e, v.tag});
+  auto along = [&](ModelRef on_edge, ModelRef other) {
+    return other == on_edge || (other.dim == 0 && edge_vertex.count({on_edge.tag, other.tag}));
+  };
+  for (std::size_t f = 0; f < pm.num_faces(); ++f) {
+    if (!loop_in_range[f]) continue;
+    const auto loop = pm.face(FaceId(f));
+    for (std::size_t k = 0; k < loop.size(); ++k) {
+      const ModelRef a = pm.point_class[loop[k].idx], b = pm.point_class[loop[(k + 1) % loop.size()].idx];
+      if (a.dim == 1 && along(a, b)) have.insert({1, a.tag});
+      if (b.dim == 1 && along(b, a)) have.insert({1, b.tag});
+    }
+    if (pm.face_kind[f] != FaceKind::Interior) have.insert({2, pm.face_tag[f]});
+  }
+  const char* names[3] = {"vertex", "edge", "face"};
+  for (int dim = 0; dim < 3; ++dim)
+    for (const ModelEntity& e : primal.model().entities[dim])
+      if (!have.count({dim, e.tag}))
+        r.missing_model_entities.push_back(std::string("model ") + names[dim] + " " + std::to_string(e.tag));
+}
+
+// Regions bounded by a model face (external or interface; a fracture has the
+// same region on both sides and its dual faces cancel within it) whose
+// triangles are not all in one plane, by the exact orientation test.
+std::set<std::int32_t> regions_with_curved_faces(const ClassifiedTetMesh& primal) {
+  std::map<std::int32_t, std::array<Point3, 3>> plane;  // model face tag -> its first triangle
+  std::set<std::int32_t> curved;
+  for (std::size_t t = 0; t < primal.num_triangles(); ++t) {
+    if (!primal.on_model_face(TriId(t))) continue;
+    const std::int32_t tag = primal.triangle_class(TriId(t)).tag;
+    const auto tv = primal.triangle(TriId(t));
+    const std::array<Point3, 3> tri{primal.point(tv[0]), primal.point(tv[1]), primal.point(tv[2])};
+    const auto& ref = plane.try_emplace(tag, tri).first->second;
+    for (const Point3& p : tri)
+      if (orient3d(ref[0], ref[1], ref[2], p) != Sign::Zero) curved.insert(tag);
+  }
+  std::set<std::int32_t> regions;
+  for (std::int32_t tag : curved) {
+    const ModelEntity* f = primal.model().find(2, tag);
+    if (!f || (f->regions.size() == 2 && f->regions[0] == f->regions[1])) continue;
+    regions.insert(f->regions.begin(), f->regions.end());
+  }
+  return regions;
+}
+
+// Per-material dual volume against the primal's (double sums, relative tolerance).
+void check_volumes(const ClassifiedTetMesh& primal, double tol, ValidationReport& r) {
+  r.volume_rel_tol = tol;
+  for (std::size_t t = 0; t < primal.num_tets(); ++t)
+    r.primal_material_volume[primal.region(TetId(t))] += primal.tet_volume(TetId(t));
+  const std::set<std::int32_t> curved = regions_with_curved_faces(primal);
+  std::set<std::int32_t> materials;
+  for (const auto& [tag, v] : r.primal_material_volume) materials.insert(tag);
+  for (const auto& [tag, v] : r.material_volume) materials.insert(tag);
+  for (std::int32_t tag : materials) {
+    if (curved.count(tag)) continue;
+    r.volume_checked_materials.push_back(tag);
+    const auto d = r.material_volume.find(tag), p = r.primal_material_volume.find(tag);
+    const double dual = d == r.material_volume.end() ? 0.0 : d->second;
+    const double prim = p == r.primal_material_volume.end() ? 0.0 : p->second;
+    const double scale = std::max(std::fabs(dual), std::fabs(prim));
+    const double rel = scale > 0 ? std::fabs(dual - prim) / scale : 0.0;
+    if (!(rel <= tol)) r.volume_mismatches.push_back({tag, dual, prim, rel});
+  }
+}
+
+}  // namespace
+
+ValidationReport validate(const PolyMesh& pm, const ClassifiedTetMesh* primal, double volume_rel_tol) {
+  ValidationReport r;
+  r.cells = pm.num_cells();
+  r.faces = pm.num_faces();
+  r.points = pm.num_points();
+  const std::vector<bool> loop_in_range = check_faces(pm, r);
+  check_half_face_references(pm, r);
+  check_cells(pm, loop_in_range, r);
   if (primal) {
-    std::set<std::pair<int, std::int32_t>> have;
-    for (const ModelRef& m : pm.point_class)
-      if (m.dim <= 1) have.insert({m.dim, m.tag});
-    for (std::size_t f = 0; f < pm.num_faces(); ++f)
-      if (pm.face_kind[f] != FaceKind::Interior) have.insert({2, pm.face_tag[f]});
-    const char* names[3] = {"vertex", "edge", "face"};
-    for (int dim = 0; dim < 3; ++dim)
-      for (const ModelEntity& e : primal->model().entities[dim])
-        if (!have.count({dim, e.tag}))
-          r.missing_model_entities.push_back(std::string("model ") + names[dim] + " " + std::to_string(e.tag));
+    check_model_entities(pm, loop_in_range, *primal, r);
+    check_volumes(*primal, volume_rel_tol, r);
   }
   return r;
 }
@@ -90,6 +228,7 @@ Json ValidationReport::to_json() const {
   j.set("closed_cells", closed_cells);
   j.set("manifold_cells", manifold_cells);
   j.set("slit_cells", slit_cells);
+  j.set("misoriented_cells", misoriented_cells);
   j.set("face_errors", face_errors);
   j.set("negative_volume_cells", negative_volume_cells);
   Json mv = Json::array();
@@ -97,13 +236,29 @@ Json ValidationReport::to_json() const {
     Json o = Json::object();
     o.set("tag", tag);
     o.set("volume", v);
+    if (auto p = primal_material_volume.find(tag); p != primal_material_volume.end()) o.set("primal_volume", p->second);
     mv.push(o);
   }
   j.set("material_volumes", mv);
   Json miss = Json::array();
   for (auto& s : missing_model_entities) miss.push(s);
   j.set("missing_model_entities", miss);
+  Json checked = Json::array();
+  for (std::int32_t tag : volume_checked_materials) checked.push(tag);
+  j.set("volume_checked_materials", checked);
+  j.set("volume_rel_tol", volume_rel_tol);
+  Json mism = Json::array();
+  for (const VolumeMismatch& m : volume_mismatches) {
+    Json o = Json::object();
+    o.set("material", m.material);
+    o.set("dual", m.dual);
+    o.set("primal", m.primal);
+    o.set("rel_diff", m.rel_diff);
+    mism.push(o);
+  }
+  j.set("volume_mismatches", mism);
   j.set("ok", ok());
+  j.set("geometry_ok", geometry_ok());
   return j;
 }
 

@@ -1,6 +1,7 @@
 // Invariant checks on a PolyMesh (SPEC §10), used by tests, by the CLI's
 // `check` and between stages. Combinatorial checks are exact by nature; the
-// volumes are double sums (statistics; the exact identity is checked in tests).
+// volumes are double sums compared with a relative tolerance (the exact
+// identity is checked with rationals in tests/dual_test.cpp).
 #pragma once
 #include <cstdint>
 #include <map>
@@ -13,24 +14,70 @@
 
 namespace polydual {
 
+// Default relative tolerance of the per-material volume check:
+// |dual - primal| <= tol * max(|dual|, |primal|). Both sides are double sums of
+// one positive-dominated term per tet or decomposition tet, each rounded a few
+// times, so their relative error is below n * 4 eps (about 1e-9 for n = 2e6
+// cells in the worst case, ~1e-13 in practice: errors of independent terms
+// do not add up in one direction). A missing, duplicated or displaced cell
+// changes a material's volume by about 1/n of it, far above this.
+inline constexpr double kVolumeRelTol = 1e-9;
+
+// A material whose dual volume differs from its primal volume.
+struct VolumeMismatch {
+  std::int32_t material = 0;
+  double dual = 0, primal = 0;
+  double rel_diff = 0;  // |dual - primal| / max(|dual|, |primal|)
+};
+
 struct ValidationReport {
   std::size_t cells = 0, faces = 0, points = 0;
   std::size_t closed_cells = 0;          // every cell edge balanced (as often forward as backward)
   std::size_t manifold_cells = 0;        // closed, and every edge used by exactly two half-faces
   std::size_t slit_cells = 0;            // cells holding both sides of a face (fracture tips)
+  // Cells that are not closed because an edge is used at least twice more in
+  // one direction than in the other: a face loop reversed (wrongly oriented)
+  // rather than a face missing. Counted in cells - closed_cells too.
+  std::size_t misoriented_cells = 0;
   std::vector<CellId> open_cells;        // not closed (first 100)
-  std::size_t face_errors = 0;           // faces with < 3 points, repeated points, bad owner/neighbour
+  // Faces with < 3 points, a repeated point, a point id out of range, an owner
+  // or neighbour out of range or missing, a kind that disagrees with the
+  // neighbour (External iff none), or a half-face not listed exactly once by
+  // its cell (once for the owner, once for a neighbour, never for none). A
+  // half-face listed by the wrong cell or naming no face is counted too.
+  std::size_t face_errors = 0;
   std::size_t negative_volume_cells = 0;  // geometry, not topology: tangled cells (reported, not an error)
   std::map<std::int32_t, double> material_volume;  // sum of decomposition volumes (double)
-  std::vector<std::string> missing_model_entities;  // "vertex 3", "edge 7", "face 2"
+  // With a primal: a model vertex with no dual point classified on it at its
+  // position, a model edge with no dual edge along it (both ends on the edge or
+  // its model vertices, one on the edge), a model face with no dual face of its
+  // tag: "model vertex 3", "model edge 7", "model face 2".
+  std::vector<std::string> missing_model_entities;
+
+  // Geometry, with a primal only: per-material volume of the primal (sum of tet
+  // volumes, double) and the dual materials that differ from it by more than
+  // the tolerance. Only materials all of whose external and interface model
+  // faces are planar (exact orientation test on the primal's triangles) are
+  // compared: on a curved or jagged model face the dual faces are fans off the
+  // primal facets and the volumes differ by the discretisation, not by a bug.
+  std::map<std::int32_t, double> primal_material_volume;
+  std::vector<std::int32_t> volume_checked_materials;  // sorted
+  double volume_rel_tol = kVolumeRelTol;
+  std::vector<VolumeMismatch> volume_mismatches;
+
+  // Topology only: closed cells, sound faces, every model entity represented.
   bool ok() const {
     return closed_cells == cells && face_errors == 0 && missing_model_entities.empty();
   }
+  // Geometry: every checked material's dual volume matches the primal's.
+  bool geometry_ok() const { return volume_mismatches.empty(); }
   Json to_json() const;
 };
 
-// primal may be null: then model-entity representation is not checked.
-ValidationReport validate(const PolyMesh& mesh, const ClassifiedTetMesh* primal = nullptr);
+// primal may be null: then neither model-entity representation nor volumes
+// are checked. volume_rel_tol: see kVolumeRelTol.
+ValidationReport validate(const PolyMesh& mesh, const ClassifiedTetMesh* primal = nullptr,
+                          double volume_rel_tol = kVolumeRelTol);
 
 // Signed volume of a cell by its symmetric decomposition (double).
 double cell_volume(const PolyMesh& mesh, CellId c);

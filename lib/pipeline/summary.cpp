@@ -176,6 +176,19 @@ Json mesh_summary(const PolyMesh& pm, const CheckResult& check, const Classified
   for (auto& s : rep.missing_model_entities) miss.push(s);
   j.set("missing_model_entities", miss);
   j.set("topology_ok", rep.ok());
+  // Materials bounded by planar model faces: the dual's volume against the
+  // primal's (design §10; double sums within a relative tolerance).
+  j.set("geometry_ok", rep.geometry_ok());
+  Json mism = Json::array();
+  for (const VolumeMismatch& m : rep.volume_mismatches) {
+    Json o = Json::object();
+    o.set("material", m.material);
+    o.set("dual", m.dual);
+    o.set("primal", m.primal);
+    o.set("rel_diff", m.rel_diff);
+    mism.push(o);
+  }
+  j.set("volume_mismatches", mism);
   return j;
 }
 
@@ -195,7 +208,7 @@ Json convert_summary(const ConvertResult& r, const PipelineParams& params) {
   Json mesh = mesh_summary(r.mesh, r.check, &r.primal);
   for (const char* k : {"cells", "faces", "points", "invalid_cells", "closed_cells", "slit_cells", "face_errors",
                         "negative_volume_cells", "materials", "missing_model_entities", "topology_ok",
-                        "invalid_by_class", "invalid_where"})
+                        "geometry_ok", "volume_mismatches", "invalid_by_class", "invalid_where"})
     if (const Json* v = mesh.find(k)) j.set(k, *v);
   j.set("invalid_before", r.report.invalid_before);
   j.set("invalid_after", r.report.invalid_after);
