@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Builds the reader fuzzers (fuzz/CMakeLists.txt) with clang++-14 and runs each
+# Builds the fuzzers (fuzz/CMakeLists.txt: the readers, the VTU polyhedron
+# reader, and the whole pipeline) with clang++-14 and runs each
 # for a bounded time on a seed corpus made from tests/data. Exits non-zero when
 # a fuzzer finds a crash (its reproducer is left in the work directory).
 # Usage: fuzz/run.sh [seconds per target, default 20] [work dir, default build-fuzz]
@@ -26,6 +27,12 @@ seeds() {  # seeds <format>: fills $work/corpus_<format>
     medit) cp "$data"/*.mesh "$dir"/ ;;
     vtu) cp "$data"/cube5*.vtu "$dir"/ ;;
     vtu_poly) cp "$data"/poly_*.vtu "$dir"/ ;;
+    pipeline)  # first byte: the reader ('m' Medit, 'g' Gmsh)
+      cp "$here"/seeds_pipeline/* "$dir"/
+      for f in "$data"/cube5.mesh "$data"/cube5.msh "$data"/cube5_v2.msh; do
+        case "$f" in *.mesh) p=m ;; *) p=g ;; esac
+        { printf '%s' "$p"; cat "$f"; } > "$dir/$(basename "$f")"
+      done ;;
     tetgen)
       { cat "$data/cube5.node"; printf '\0'; cat "$data/cube5.ele"; printf '\0'; cat "$data/cube5.face"; } \
         > "$dir/cube5"
@@ -34,7 +41,7 @@ seeds() {  # seeds <format>: fills $work/corpus_<format>
 }
 
 status=0
-for format in msh medit tetgen vtu vtu_poly; do
+for format in msh medit tetgen vtu vtu_poly pipeline; do
   seeds "$format"
   mkdir -p "$work/artifacts_$format"
   echo "== fuzz_$format for ${seconds}s"

@@ -38,6 +38,35 @@ inline void ring_others(int ia, int ib, int& ic, int& id) {
                        std::to_string(m.input_tet(TetId(t2)) + 1) + ", " + std::to_string(m.input_tet(TetId(t)) + 1) + ")");
 }
 
+[[noreturn, gnu::cold, gnu::noinline]] void throw_overlap(const ClassifiedTetMesh& m, TetId t, TetId u) {
+  throw InputError(m.source(), "tet " + std::to_string(std::min(m.input_tet(t), m.input_tet(u)) + 1),
+                   "tets " + std::to_string(m.input_tet(t) + 1) + " and " + std::to_string(m.input_tet(u) + 1) +
+                       " lie on the same side of their shared triangle: the mesh overlaps itself");
+}
+
+// kSideParity[o][i]: for a tet whose local indices by increasing vertex id are
+// the 2-bit fields of o, the parity of the permutation (the other three local
+// indices in increasing-id order, then i). orient(shared face in increasing
+// ids, vertex i) is + for parity 0 in a positively oriented tet, so two tets
+// on the two sides of a shared face have different parities.
+struct SideParityTable {
+  std::uint8_t bit[256][4] = {};
+  constexpr SideParityTable() {
+    for (int o = 0; o < 256; ++o)
+      for (int i = 0; i < 4; ++i) {
+        int perm[4] = {0, 0, 0, 0}, n = 0;
+        for (int r = 0; r < 4; ++r)
+          if (((o >> (2 * r)) & 3) != i) perm[n < 3 ? n++ : 3] = (o >> (2 * r)) & 3;
+        perm[3] = i;
+        int inv = 0;
+        for (int x = 0; x < 4; ++x)
+          for (int y = x + 1; y < 4; ++y) inv += perm[x] > perm[y];
+        bit[o][i] = std::uint8_t(inv & 1);
+      }
+  }
+};
+constexpr SideParityTable kSideParity;
+
 }  // namespace
 
 const ModelEntity* ModelTopology::find(int dim, std::int32_t tag) const {
@@ -177,6 +206,7 @@ constexpr std::size_t kEdgeGuessSlack = 16;
   build_vertex_stars(m);
   const LowVertexBuckets b = bucket_by_low_vertices(m);
   const std::size_t num_tris = match_faces(m, b);
+  check_opposite_sides(m, b);
   number_triangles(m, num_tris);
   number_edges(m, b, num_tris);
   m.vertex_class_.assign(nv, ModelRef{});
@@ -310,6 +340,37 @@ std::size_t TetMeshBuilder::match_faces(ClassifiedTetMesh& m, const LowVertexBuc
   }
   m.tet_adj_.pop_back();
   return num_tris;
+}
+
+// Two positively oriented tets sharing a triangle must lie on its two sides
+// (combinatorial, hence exact: the orientations were decided exactly before).
+// Without it an overlapping mesh pairs its faces consistently enough to pass
+// the conformity check and sends the walks around an edge into a cycle that
+// never returns to its start. Branch-free over every face (each pair is seen
+// twice; the table lookup is cheaper than a branch on the order of the two
+// tets); the pair is looked for only when one is wrong.
+void TetMeshBuilder::check_opposite_sides(const ClassifiedTetMesh& m, const LowVertexBuckets& b) {
+  constexpr std::uint32_t kNo = ClassifiedTetMesh::kNoNeighbour;
+  const std::size_t nt = m.tets_.size();
+  const auto& adj = m.tet_adj_;
+  const auto& sorted = b.sorted;
+  std::uint32_t bad = 0;
+  for (std::size_t t = 0; t < nt; ++t) {
+    const std::uint8_t* mine = kSideParity.bit[sorted[t]];
+    for (int i = 0; i < 4; ++i) {
+      const std::uint32_t c = adj[4 * t + std::size_t(i)], has = c != kNo;
+      const std::uint32_t u = has ? c >> 2 : std::uint32_t(t);  // a safe index on the boundary
+      bad |= has & std::uint32_t(mine[i] == kSideParity.bit[sorted[u]][c & 3]);
+    }
+  }
+  if (bad == 0) [[likely]]
+    return;
+  for (std::size_t t = 0; t < nt; ++t)
+    for (int i = 0; i < 4; ++i) {
+      const std::uint32_t c = adj[4 * t + std::size_t(i)];
+      if (c != kNo && kSideParity.bit[sorted[t]][i] == kSideParity.bit[sorted[c >> 2]][c & 3])
+        throw_overlap(m, TetId(t), TetId(c >> 2));
+    }
 }
 
 void TetMeshBuilder::number_triangles(ClassifiedTetMesh& m, std::size_t num_tris) {

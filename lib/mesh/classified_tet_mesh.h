@@ -282,6 +282,7 @@ class TetMeshBuilder {
   static void build_vertex_stars(ClassifiedTetMesh& m);
   static LowVertexBuckets bucket_by_low_vertices(const ClassifiedTetMesh& m);
   static std::size_t match_faces(ClassifiedTetMesh& m, const LowVertexBuckets& b);
+  static void check_opposite_sides(const ClassifiedTetMesh& m, const LowVertexBuckets& b);
   static void number_triangles(ClassifiedTetMesh& m, std::size_t num_tris);
   static void number_edges(ClassifiedTetMesh& m, const LowVertexBuckets& b, std::size_t num_tris);
 };
