@@ -24,6 +24,7 @@ void PipelineParams::validate() const {
   validate_classify(classify);
   validate_dual(dual);
   optim.validate();
+  split.validate();
 }
 
 Json PipelineParams::to_json() const {
@@ -37,6 +38,7 @@ Json PipelineParams::to_json() const {
   j.set("derivatives", derivatives_name(optim.derivatives));
   j.set("max_iter", optim.max_iter);
   j.set("optimizer", optim.to_json());
+  j.set("split", split.to_json());
   return j;
 }
 
