@@ -36,6 +36,9 @@ struct PolyMesh {
   std::vector<HalfFace> cell_faces;
   std::vector<std::int32_t> cell_material;  // model region tag
   std::vector<VertexId> cell_primal;        // source primal vertex
+  // The cell each cell was split from (split/split.h); empty: every cell is
+  // its own origin (no split ran).
+  std::vector<CellId> cell_origin;
 
   std::size_t num_points() const { return points.size(); }
   std::size_t num_faces() const { return face_owner.size(); }

@@ -4,6 +4,7 @@
 #include "core/stopwatch.h"
 #include "io/output_guard.h"
 #include "io/read_tet_mesh.h"
+#include "split/split.h"
 
 namespace polydual {
 
@@ -21,6 +22,38 @@ auto run_stage(ConvertReport& report, const ConvertHooks& hooks, const char* nam
   return value;
 }
 
+
+// The split stage (split/split.h) on every cell still invalid, with the counts
+// by cause (class of the primal vertex, slit cell), then the check again.
+void run_split(ConvertResult& r, const SplitParams& params, const ConvertHooks& hooks) {
+  run_stage(r.report, hooks, "split", [&](Json& stats) {
+    constexpr const char* kClass[4] = {"model_vertex", "model_edge", "model_face", "interior"};
+    std::vector<CellId> cells;
+    std::size_t by_class[4] = {0, 0, 0, 0}, slit = 0;
+    for (std::size_t c = 0; c < r.check.verdicts.size(); ++c) {
+      if (r.check.verdicts[c].valid) continue;
+      cells.push_back(CellId(c));
+      const int dim = r.primal.vertex_class(r.mesh.cell_primal[c]).dim;
+      ++by_class[dim >= 0 && dim <= 3 ? dim : 3];
+      bool is_slit = false;
+      for (HalfFace h : r.mesh.cell(CellId(c)))
+        is_slit |= r.mesh.face_owner[h.face().idx] == r.mesh.face_neighbour[h.face().idx];
+      slit += is_slit;
+    }
+    stats = split_cells(r.mesh, cells, params).to_json();
+    Json by = Json::object();
+    for (int k = 0; k < 4; ++k) by.set(kClass[k], by_class[k]);
+    stats.set("invalid_by_class", by);
+    stats.set("slit_cells", slit);
+    return 0;
+  });
+  r.check = run_stage(r.report, hooks, "check_split", [&](Json& stats) {
+    CheckResult c = check_mesh(r.mesh, &r.primal);
+    stats = c.to_json();
+    stats.set("invalid_after", c.invalid_cells);
+    return c;
+  });
+}
 
 // The stages from classify to the final check, appended to r.report.
 void run_pipeline(ConvertResult& r, const TetSoup& soup, const PipelineParams& params, const ConvertHooks& hooks) {
@@ -71,6 +104,7 @@ void run_pipeline(ConvertResult& r, const TetSoup& soup, const PipelineParams& p
       return c;
     });
   }
+  if (params.split.enabled && r.check.invalid_cells > 0) run_split(r, params.split, hooks);
   rep.invalid_after = r.check.invalid_cells;
 }
 

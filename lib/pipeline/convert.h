@@ -2,7 +2,8 @@
 // (docs/design.md, "Pipeline"):
 //   classify (§2.1, SPEC §3) -> [tet pre-optimisation: planned] -> build dual
 //   (Algorithm 1 steps 1-7) -> cleanup (§2.8) -> cells (step 8) -> check
-//   (exact star test, §3.1) -> [split: planned] -> optimise (§3.3) -> check.
+//   (exact star test, §3.1) -> optimise (§3.3) -> check -> split of the cells
+//   still invalid (split/split.h) -> check.
 // Each stage takes its own params struct and leaves a StageRecord (name,
 // seconds, stats) in the report. Nothing here prints or exits; the command,
 // the experiments, the benchmarks and other programs call these entries.

@@ -8,6 +8,7 @@ void PipelineParams::validate() const {
   classify.validate();
   dual.validate();
   optim.validate();
+  split.validate();
 }
 
 Json PipelineParams::to_json() const {
@@ -23,6 +24,7 @@ Json PipelineParams::to_json() const {
   j.set("classifier", classify.to_json());
   j.set("dual_params", dual.to_json());
   j.set("optimizer", optim.to_json());
+  j.set("split", split.to_json());
   return j;
 }
 

@@ -7,6 +7,7 @@
 #include "core/json.h"
 #include "dual/build_dual.h"
 #include "optim/optimize.h"
+#include "split/split.h"
 
 namespace polydual {
 
@@ -14,6 +15,7 @@ struct PipelineParams {
   ClassifyParams classify;  // feature angle of the inference
   DualParams dual;          // Algorithm 1 and its cleanup
   OptimParams optim;        // untangling and smoothing (method None skips the stage)
+  SplitParams split;        // split of the cells still invalid (enabled = false skips the stage)
 
   // Throws UsageError naming the first bad field, its unit and its range.
   void validate() const;
