@@ -399,3 +399,12 @@ TEST(CliOptions, ForceAndOutputGuard) {
   EXPECT_EQ(run("convert " + in + " -o " + in + " --format vtu --force").code, 2);
   EXPECT_TRUE(fs::exists(in));
 }
+
+TEST(CliOptions, SplitStageOnlyWhenAsked) {
+  const std::string off = convert_json("--optimize none", "s_off.vtu");
+  const std::string on = convert_json("--optimize none --split", "s_on.vtu");
+  ASSERT_GT(jnum(off, "d['invalid_after']"), 0);
+  EXPECT_EQ(jq(off, "'split' in d['seconds']['stages']"), "False");
+  EXPECT_EQ(jq(on, "'split' in d['seconds']['stages']"), "True");
+  EXPECT_LE(jnum(on, "d['invalid_after']"), jnum(off, "d['invalid_after']"));
+}

@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "generate/random_mesh.h"
+#include "io/medit_io.h"
 #include "io/read_tet_mesh.h"
 #include "io/vtu_poly_reader.h"
 #include "pipeline/convert.h"
@@ -168,4 +169,22 @@ TEST(Pipeline, FormatFromOutputName) {
   EXPECT_EQ(poly_format_for("vtu", "a/case"), PolyFormat::Vtu);
   EXPECT_THROW(poly_format_for("", "a/b.msh"), UsageError);
   EXPECT_THROW(poly_format_for("stl", "a/b.vtu"), UsageError);
+}
+
+TEST(Pipeline, OverlappingTetsAreAnErrorNotAHang) {
+  // Found by fuzz/fuzz_pipeline.cpp: two tets on the same side of their shared
+  // triangle sent the ring walk around an edge into an endless cycle.
+  const std::string path = std::string(POLYDUAL_SOURCE_DIR) + "/fuzz/regressions/pipeline_overlapping_tets_hang";
+  std::ifstream f(path, std::ios::binary);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  const std::string bytes = ss.str().substr(1);  // the first byte picks the reader ('m': Medit)
+  const TetSoup soup = read_medit(bytes, "overlap.mesh");
+  try {
+    convert(soup, PipelineParams{});
+    ADD_FAILURE() << "an overlapping mesh was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("overlaps itself"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("overlap.mesh"), std::string::npos) << e.what();
+  }
 }

@@ -189,10 +189,11 @@ TEST(Split, FractureDomainInvariants) {
   std::printf("fracture 2k: %s\n", st.to_json().dump().c_str());
 }
 
-// Disabled: the grouping LPs of cells without a plan make 100 meshes take > 5 min.
-TEST(Split, DISABLED_RandomMeshesWithFracturesInvariants) {
+// A few random meshes only: the grouping LPs of the cells without a plan
+// (slit cells) make 100 meshes take > 5 min.
+TEST(Split, RandomMeshesWithFracturesInvariants) {
   std::size_t split = 0, failed = 0, meshes_with_bad = 0;
-  for (std::uint64_t seed = 0; seed < 100; ++seed) {  // 1000 takes minutes (LPs of the failing cells)
+  for (std::uint64_t seed = 0; seed < 12; ++seed) {
     RandomMeshParams rp{seed, 12 + int(seed % 16), 1 + int(seed % 2), true, seed % 3 == 0};
     const ClassifiedTetMesh m = classify(random_classified_mesh(rp), {});
     PolyMesh pm = build_dual(m, {});

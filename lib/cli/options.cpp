@@ -49,6 +49,10 @@ const std::vector<OptionDef> kTable = {
     {"--collapse-tol", K::Real, "X", DualParams::kMinCollapseTolerance, DualParams::kMaxCollapseTolerance, "short-edge collapse length, relative to the mean primal edge",
      [](const Settings& d) { return num(d.params.dual.collapse_tolerance); },
      [](Settings& s, const std::string& v) { s.params.dual.collapse_tolerance = std::stod(v); }},
+    {"--split", K::Flag, "", kNoRange, kNoRange,
+     "split the cells still invalid after optimisation into star-shaped pieces (experimental: slit cells at "
+     "fracture tips are not split yet)",
+     nullptr, [](Settings& s, const std::string&) { s.params.split.enabled = true; }},
     {"--optimize", K::Choice, "none|local|global", kNoRange, kNoRange,
      "untangle and smooth: the paper's local Newton scheme, a global Ceres L-BFGS solve, or none",
      [](const Settings& d) { return std::string(method_name(d.params.optim.method)); },

@@ -24,8 +24,10 @@
 namespace polydual {
 
 struct SplitParams {
-  // Split the cells that are still invalid after the optimiser. Default on.
-  bool enabled = true;
+  // Split the cells that are still invalid after the optimiser. Default off
+  // (`--split`): slit cells at fracture tips, the main case, find no plan yet
+  // and are left as they are (counted in SplitStats::failed).
+  bool enabled = false;
   // Most apex groups tried per cell (each group adds one point). Default 8,
   // range [1, kMaxGroups].
   int max_groups = 8;
