@@ -1,11 +1,15 @@
 // Classification (SPEC §3). The model entities are found bottom-up from the
 // mesh: model-face triangles -> model faces (connected pieces, split by given
-// tags, region pairs and, when no tag was given, the feature angle); primal
-// edges where the model-face triangles do not form one smooth manifold sheet ->
-// model edges; vertices where model edges end, branch or bend -> model vertices.
-// Every decision here is combinatorial except the feature-angle tests, which are
-// plain double geometry (an angle threshold is a modelling choice, not a sign
-// that must be exact). Tet orientation is decided exactly (lib/predicates).
+// tags, region pairs and the feature angle, which also splits a given face
+// marker unless the file gave a full classification); primal edges where the
+// model-face triangles do not form one smooth manifold sheet -> model edges;
+// vertices where model edges end, branch or bend -> model vertices. A full
+// classification that lacks curves or points is completed the same way (fresh
+// tags, warnings); one that contradicts itself is refused (proofs/
+// classification.md L14). Every decision here is combinatorial except the
+// feature-angle tests, which are plain double geometry (an angle threshold is
+// a modelling choice, not a sign that must be exact). Tet orientation is
+// decided exactly (lib/predicates).
 #include "classify/classify.h"
 
 #include <algorithm>
@@ -318,7 +322,17 @@ class ModelInference {
     return "edge " + vlist({m_.input_vertex(v[0]), m_.input_vertex(v[1])});
   }
   std::string vertex_place(std::size_t v) const { return "vertex " + std::to_string(m_.input_vertex(VertexId(v)) + 1); }
-  void check_curve_faces(std::size_t ci, std::unordered_map<std::int32_t, std::pair<std::size_t, std::vector<std::int32_t>>>& seen) const;
+  // Per curve tag of a full classification: its first edge and the file's
+  // surface tags around it (check_curve_faces).
+  struct CurveSurfaces {
+    struct First {
+      std::size_t ci;
+      std::uint32_t offset, size;  // in pool
+    };
+    std::unordered_map<std::int32_t, First> first;
+    std::vector<std::int32_t> pool, scratch;
+  };
+  void check_curve_faces(std::size_t ci, CurveSurfaces& seen);
 
   const TetSoup& soup_;
   const ClassifyParams& params_;
@@ -447,24 +461,23 @@ void ModelInference::group_model_faces() {
     uf.unite(f1, f2);
   }
   std::vector<std::int32_t> comp_of(nmf, -1), comp_given;
+  std::vector<std::uint32_t> comp_first;  // per component: its first rank
   std::vector<std::uint32_t> root_comp(nmf, std::uint32_t(-1));
   for (std::size_t r = 0; r < nmf; ++r) {
     const std::uint32_t root = uf.find(r);
     if (root_comp[root] == std::uint32_t(-1)) {
       root_comp[root] = std::uint32_t(comp_given.size());
       comp_given.push_back(key_[r].given);
+      comp_first.push_back(std::uint32_t(r));
     }
     comp_of[r] = std::int32_t(root_comp[root]);
   }
   const std::vector<std::int32_t> face_tag = assign_tags(comp_given);
   for (std::size_t r = 0; r < nmf; ++r) tri_face_[mf_[r]] = face_tag[comp_of[r]];
   if (!soup_.full_classification) return;
-  std::vector<char> noted(comp_given.size(), 0);
-  for (std::size_t r = 0; r < nmf; ++r) {
-    const std::int32_t c = comp_of[r];
-    if (noted[c] || face_tag[c] == comp_given[c]) continue;
-    noted[c] = 1;
-    const auto& v = m_.triangle(TriId(mf_[r]));
+  for (std::size_t c = 0; c < comp_given.size(); ++c) {
+    if (face_tag[c] == comp_given[c]) continue;
+    const auto& v = m_.triangle(TriId(mf_[comp_first[c]]));
     note_added(2, comp_given[c], face_tag[c],
                "triangle " + vlist({m_.input_vertex(v[0]), m_.input_vertex(v[1]), m_.input_vertex(v[2])}));
   }
@@ -473,24 +486,32 @@ void ModelInference::group_model_faces() {
 // In a full classification, a curve lies on the same surfaces all along
 // (in Gmsh, a curve entity bounds or is embedded in fixed surfaces): the
 // file's surface tags around a given edge must be those around the first edge
-// of its curve, else the file contradicts itself (named at both edges).
-void ModelInference::check_curve_faces(
-    std::size_t ci, std::unordered_map<std::int32_t, std::pair<std::size_t, std::vector<std::int32_t>>>& seen) const {
-  std::vector<std::int32_t> surfaces;
-  for (std::uint32_t k = cand_[ci].t0; k < cand_[ci].t1; ++k) surfaces.push_back(key_[et_[k].r].given);
-  std::sort(surfaces.begin(), surfaces.end());
-  surfaces.erase(std::unique(surfaces.begin(), surfaces.end()), surfaces.end());
-  const auto [it, first] = seen.try_emplace(cand_[ci].given, ci, surfaces);
-  if (first || it->second.second == surfaces) return;
-  auto set = [](const std::vector<std::int32_t>& v) {
+// of its curve, else the file contradicts itself (named at both edges). The
+// first edge's sorted tags are kept in one pool (no allocation per edge).
+void ModelInference::check_curve_faces(std::size_t ci, CurveSurfaces& seen) {
+  std::vector<std::int32_t>& here = seen.scratch;
+  here.clear();
+  for (std::uint32_t k = cand_[ci].t0; k < cand_[ci].t1; ++k) here.push_back(key_[et_[k].r].given);
+  std::sort(here.begin(), here.end());
+  here.erase(std::unique(here.begin(), here.end()), here.end());
+  const auto [it, first] = seen.first.try_emplace(
+      cand_[ci].given, CurveSurfaces::First{ci, std::uint32_t(seen.pool.size()), std::uint32_t(here.size())});
+  if (first) {
+    seen.pool.insert(seen.pool.end(), here.begin(), here.end());
+    return;
+  }
+  const CurveSurfaces::First& f = it->second;
+  const std::span<const std::int32_t> there(seen.pool.data() + f.offset, f.size);
+  if (std::equal(there.begin(), there.end(), here.begin(), here.end())) return;
+  auto set = [](std::span<const std::int32_t> v) {
     std::string s = "{";
     for (std::size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + std::to_string(v[i]);
     return s + "}";
   };
   throw InputError(soup_.source, edge_place(ci),
                    "contradiction: the file classifies this edge on curve " + std::to_string(cand_[ci].given) +
-                       ", whose " + edge_place(it->second.first) + " lies on surfaces " + set(it->second.second) +
-                       ", but the triangles at this edge lie on surfaces " + set(surfaces));
+                       ", whose " + edge_place(f.ci) + " lies on surfaces " + set(there) +
+                       ", but the triangles at this edge lie on surfaces " + set(here));
 }
 
 // Model edges: candidates where the model-face triangles do not form one
@@ -499,7 +520,7 @@ void ModelInference::check_curve_faces(
 void ModelInference::find_model_edges() {
   const std::size_t nc = cand_.size(), nv = m_.num_vertices();
   is_me_.assign(nc, 0);
-  std::unordered_map<std::int32_t, std::pair<std::size_t, std::vector<std::int32_t>>> curve_faces;
+  CurveSurfaces curve_faces;
   for (std::size_t ci = 0; ci < nc; ++ci) {
     const std::uint32_t n = cand_[ci].t1 - cand_[ci].t0;
     const std::vector<std::int32_t> tags = n > 0 ? edge_faces(ci) : std::vector<std::int32_t>{};
@@ -563,6 +584,7 @@ void ModelInference::classify_edges() {
   for (std::size_t v = 0; v < nv; ++v)
     if (!is_mv_[v] && v_me(v).size() == 2) ue.unite(v_me(v)[0], v_me(v)[1]);
   std::vector<std::int32_t> ecomp_given;
+  std::vector<std::uint32_t> ecomp_first;  // per component: its first candidate
   ecomp_.assign(nc, -1);
   std::vector<std::uint32_t> eroot(nc, std::uint32_t(-1));
   for (std::size_t ci = 0; ci < nc; ++ci) {
@@ -571,20 +593,14 @@ void ModelInference::classify_edges() {
     if (eroot[r] == std::uint32_t(-1)) {
       eroot[r] = std::uint32_t(ecomp_given.size());
       ecomp_given.push_back(cand_[ci].given);
+      ecomp_first.push_back(std::uint32_t(ci));
     }
     ecomp_[ci] = std::int32_t(eroot[r]);
   }
   edge_tag_ = assign_tags(ecomp_given);
-  if (soup_.full_classification) {
-    std::vector<char> noted(ecomp_given.size(), 0);
-    for (std::size_t ci = 0; ci < nc; ++ci) {
-      if (!is_me_[ci]) continue;
-      const std::int32_t c = ecomp_[ci];
-      if (noted[c] || edge_tag_[c] == ecomp_given[c]) continue;
-      noted[c] = 1;
-      note_added(1, ecomp_given[c], edge_tag_[c], edge_place(ci));
-    }
-  }
+  if (soup_.full_classification)
+    for (std::size_t c = 0; c < ecomp_given.size(); ++c)
+      if (edge_tag_[c] != ecomp_given[c]) note_added(1, ecomp_given[c], edge_tag_[c], edge_place(ecomp_first[c]));
   auto& edge_class = TetMeshBuilder::edge_class(m_);
   // An edge with no model-face triangle lies in one region: any of its tets.
   for (std::size_t e = 0; e < ne; ++e) edge_class[e] = ModelRef{3, m_.region(m_.edge_tet(EdgeId(e)))};
