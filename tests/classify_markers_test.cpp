@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <limits>
+#include <map>
 #include <set>
 #include <string>
 
@@ -16,6 +17,7 @@
 #include "dual/build_dual.h"
 #include "generate/random_mesh.h"
 #include "io/medit_io.h"
+#include "io/msh_reader.h"
 #include "io/tetgen_io.h"
 
 using namespace polydual;
@@ -167,4 +169,27 @@ TEST(ClassifyMarkers, InferredEntitiesHaveNoSourceTag) {
       EXPECT_FALSE(e.source_tag.has_value()) << "dim " << d << " tag " << e.tag;
       EXPECT_EQ(e.name, "");
     }
+}
+
+// Gmsh 2.2 with physical groups only (tests/data/geo/twovol.geo): the marker
+// "ends" over the two end faces x = 0 and x = 2 (disconnected) gives two model
+// faces of that name; "interface" one; the sides, which no physical group
+// holds, are inferred (no source tag, no name); the volumes keep their names.
+TEST(ClassifyMarkers, Gmsh22PhysicalNamesNameTheFaces) {
+  const TetSoup soup = read_msh_file(std::string(POLYDUAL_TEST_DATA) + "/gmsh/twovol_v2_physical_bin.msh");
+  ASSERT_FALSE(soup.full_classification);
+  const ClassifiedTetMesh m = classify(soup);
+  EXPECT_EQ(counts(m), (Counts{12, 20, 11, 2}));
+  std::map<std::string, int> faces_named;
+  for (const ModelEntity& f : m.model().entities[2]) {
+    ++faces_named[f.name];
+    EXPECT_EQ(f.source_tag.has_value(), !f.name.empty()) << "face " << f.tag;
+    if (f.name == "ends") EXPECT_EQ(f.source_tag, std::optional<std::int32_t>(4));
+    if (f.name == "interface") EXPECT_EQ(f.source_tag, std::optional<std::int32_t>(3));
+  }
+  EXPECT_EQ(faces_named, (std::map<std::string, int>{{"", 8}, {"ends", 2}, {"interface", 1}}));
+  ASSERT_EQ(m.model().count(3), 2u);
+  EXPECT_EQ(m.model().entities[3][0].name, "left");
+  EXPECT_EQ(m.model().entities[3][1].name, "right");
+  EXPECT_THAT(volume_mismatches(m), ::testing::IsEmpty());
 }
