@@ -210,7 +210,8 @@ VertexId third_vertex(const ClassifiedTetMesh& m, TriId f, EdgeId e) {
 // carrying a given tag keeps it; every other component gets a fresh tag.
 // Fresh tags count up from one above the largest given tag (from 1 when none
 // is given), so they never interleave with the file's; past INT32_MAX they are
-// the smallest positive integers no component was given or has taken.
+// the smallest positive integers no component was given (below the largest
+// given tag, so none of those handed out above it).
 std::vector<std::int32_t> assign_tags(const std::vector<std::int32_t>& given_tag_of_component) {
   std::set<std::int32_t> given(given_tag_of_component.begin(), given_tag_of_component.end());
   given.erase(kNoTag);
@@ -723,7 +724,8 @@ void ModelInference::report_completion() {
   static constexpr const char* kFileEntity[3] = {"point", "curve", "surface"};
   static constexpr const char* kWhereInferred[3] = {
       "where model edges end, branch or change curve at no point of the file",
-      "where model faces meet along edges that no curve of the file covers", ""};
+      "where model faces meet along edges that no curve of the file covers",
+      ""};  // never: every model-face triangle of a full classification has a surface
   static constexpr const char* kWhyPieces[3] = {
       "one point tag given to several vertices", "split at a model vertex, or disconnected",
       "disconnected, or between different regions"};
