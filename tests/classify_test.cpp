@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <set>
 #include <stdexcept>
 
 #include "classify/classify.h"
@@ -60,20 +62,36 @@ TEST(Classify, InterfaceBetweenTwoRegions) {
   EXPECT_EQ(m.model().count(2), 11u);
 }
 
+// The random fracture is a zigzag sheet of tet faces under one tag: the
+// feature angle splits it at its bends into pieces that all keep the tag as
+// their source; with the angle at 180 it is one face. Either way its free
+// boundary (model edges bounding one fracture piece and nothing else) exists.
 TEST(Classify, FractureHasFreeBoundaryEdges) {
   RandomMeshParams p;
   p.seed = 11;
   p.num_points = 300;
   p.fracture = true;
-  ClassifiedTetMesh m = classify(random_classified_mesh(p));
-  const ModelEntity* fr = m.model().find(2, kRandomFractureTag);
-  ASSERT_NE(fr, nullptr);
-  ASSERT_EQ(fr->regions.size(), 2u);
-  EXPECT_EQ(fr->regions[0], fr->regions[1]);
-  int free_edges = 0;  // model edges bounding only the fracture
-  for (const ModelEntity& e : m.model().entities[1])
-    if (e.bounds == std::vector<std::int32_t>{kRandomFractureTag}) ++free_edges;
-  EXPECT_GE(free_edges, 1);
+  for (double angle : {30.0, 180.0}) {
+    ClassifyParams cp;
+    cp.feature_angle_deg = angle;
+    ClassifiedTetMesh m = classify(random_classified_mesh(p), cp);
+    const ModelEntity* fr = m.model().find(2, kRandomFractureTag);
+    ASSERT_NE(fr, nullptr);
+    ASSERT_EQ(fr->regions.size(), 2u);
+    EXPECT_EQ(fr->regions[0], fr->regions[1]);
+    std::set<std::int32_t> pieces;
+    for (const ModelEntity& f : m.model().entities[2])
+      if (f.source_tag == kRandomFractureTag) {
+        pieces.insert(f.tag);
+        EXPECT_EQ(face_kind(f), FaceKind::Fracture);
+      }
+    if (angle == 180.0) EXPECT_EQ(pieces.size(), 1u);
+    else EXPECT_GT(pieces.size(), 1u);
+    int free_edges = 0;  // model edges bounding one fracture piece only
+    for (const ModelEntity& e : m.model().entities[1])
+      if (e.bounds.size() == 1 && pieces.count(e.bounds[0])) ++free_edges;
+    EXPECT_GE(free_edges, 1) << angle;
+  }
 }
 
 TEST(Classify, GivenTagsAreKeptAndDeterministic) {
@@ -104,12 +122,23 @@ TEST(Classify, FullClassificationContradictionsAreReported) {
   EXPECT_THROW(classify(t), InputError);
 }
 
+// One marker INT32_MAX over the six sides: split into six faces, the first
+// keeps it and fresh tags cannot go above it, so they are the smallest
+// positive ones; at 180 degrees the marker is one face.
 TEST(Classify, TagsNearInt32MaxDoNotOverflow) {
   TetSoup s = kuhn_lattice(2, 2, 2);
   s.triangles = box_triangles(s);
-  for (auto& t : s.triangles) t.tag = std::numeric_limits<std::int32_t>::max();  // one tag for all six sides
+  for (auto& t : s.triangles) t.tag = std::numeric_limits<std::int32_t>::max();
   ClassifiedTetMesh m = classify(s);
-  EXPECT_EQ(m.model().count(2), 1u);  // given one tag: no geometric splitting
+  std::vector<std::int32_t> tags;
+  for (const ModelEntity& f : m.model().entities[2]) {
+    tags.push_back(f.tag);
+    EXPECT_EQ(f.source_tag, std::numeric_limits<std::int32_t>::max());
+  }
+  EXPECT_EQ(tags, (std::vector<std::int32_t>{1, 2, 3, 4, 5, std::numeric_limits<std::int32_t>::max()}));
+  ClassifyParams p;
+  p.feature_angle_deg = 180;
+  EXPECT_EQ(classify(s, p).model().count(2), 1u);
 }
 
 // validate(): a value outside (0, 180] throws UsageError naming the field, its

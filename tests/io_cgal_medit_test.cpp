@@ -24,7 +24,11 @@ const std::string kData = POLYDUAL_TEST_DATA;
 std::map<std::int32_t, std::vector<std::int32_t>> face_regions(const TetSoup& s) {
   std::map<std::int32_t, std::vector<std::int32_t>> out;
   try {
-    const ClassifiedTetMesh m = classify(s);
+    // At 180 degrees the feature angle does not split the (coarse, curved)
+    // patches: the model faces are the reader's triangle tags.
+    ClassifyParams whole;
+    whole.feature_angle_deg = 180;
+    const ClassifiedTetMesh m = classify(s, whole);
     EXPECT_EQ(m.num_tets(), 1404u);
     for (const ModelEntity& f : m.model().entities[2]) out[f.tag] = f.regions;
   } catch (const InputError& e) {
@@ -59,10 +63,11 @@ TEST(IoCgalMedit, ShowPatchesTrueKeepsThePatches) {
   // disagree with the cell labels: one triangle of the interface patch 5 lies
   // on the outer boundary of subdomain 1, one of patch 3 (subdomain 1's outer
   // boundary) on that of subdomain 2. The patches are kept as given, so those
-  // two triangles become model faces of their own.
+  // two triangles become model faces of their own (fresh tags above the
+  // largest patch, 5).
   const auto faces = face_regions(s);
   const std::map<std::int32_t, std::vector<std::int32_t>> expected = {
-      {1, {1}}, {2, {2}}, {3, {1}}, {4, {2}}, {5, {1, 2}}};
+      {3, {1}}, {4, {2}}, {5, {1, 2}}, {6, {1}}, {7, {2}}};
   EXPECT_EQ(faces, expected);
 }
 

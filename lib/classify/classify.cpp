@@ -1,17 +1,23 @@
 // Classification (SPEC §3). The model entities are found bottom-up from the
 // mesh: model-face triangles -> model faces (connected pieces, split by given
-// tags, region pairs and, when no tag was given, the feature angle); primal
-// edges where the model-face triangles do not form one smooth manifold sheet ->
-// model edges; vertices where model edges end, branch or bend -> model vertices.
-// Every decision here is combinatorial except the feature-angle tests, which are
-// plain double geometry (an angle threshold is a modelling choice, not a sign
-// that must be exact). Tet orientation is decided exactly (lib/predicates).
+// tags, region pairs and the feature angle, which also splits a given face
+// marker unless the file gave a full classification); primal edges where the
+// model-face triangles do not form one smooth manifold sheet -> model edges;
+// vertices where model edges end, branch or bend -> model vertices. A full
+// classification that lacks curves or points is completed the same way (fresh
+// tags, warnings); one that contradicts itself is refused (proofs/
+// classification.md L14). Every decision here is combinatorial except the
+// feature-angle tests, which are plain double geometry (an angle threshold is
+// a modelling choice, not a sign that must be exact). Tet orientation is
+// decided exactly (lib/predicates).
 #include "classify/classify.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <set>
@@ -201,24 +207,41 @@ VertexId third_vertex(const ClassifiedTetMesh& m, TriId f, EdgeId e) {
 }
 
 // Assign tags to components, in component order: the first component
-// carrying a given tag keeps it; every other component gets the smallest
-// positive integer that no component was given and none has taken yet (so a
-// given tag of INT32_MAX cannot make fresh tags overflow).
+// carrying a given tag keeps it; every other component gets a fresh tag.
+// Fresh tags count up from one above the largest given tag (from 1 when none
+// is given), so they never interleave with the file's; past INT32_MAX they are
+// the smallest positive integers no component was given (below the largest
+// given tag, so none of those handed out above it).
 std::vector<std::int32_t> assign_tags(const std::vector<std::int32_t>& given_tag_of_component) {
   std::set<std::int32_t> given(given_tag_of_component.begin(), given_tag_of_component.end());
-  std::set<std::int32_t> used;
+  given.erase(kNoTag);
+  std::set<std::int32_t> kept;
   std::vector<std::int32_t> out(given_tag_of_component.size());
-  std::int32_t next = 1;
+  std::int64_t above = given.empty() ? 1 : std::max<std::int64_t>(1, std::int64_t(*given.rbegin()) + 1);
+  std::int32_t low = 1;
   for (std::size_t c = 0; c < out.size(); ++c) {
     std::int32_t g = given_tag_of_component[c];
-    if (g != kNoTag && used.insert(g).second) {
+    if (g != kNoTag && kept.insert(g).second) {
       out[c] = g;
       continue;
     }
-    while (given.count(next)) ++next;
-    out[c] = next++;
+    if (above <= std::numeric_limits<std::int32_t>::max()) {
+      out[c] = std::int32_t(above++);
+      continue;
+    }
+    while (given.count(low)) ++low;  // below the given ones: those above are all taken
+    out[c] = low++;
   }
   return out;
+}
+
+// The tags in a warning: all of a few, else the first and last of a run.
+std::string tag_list(const std::vector<std::int32_t>& tags) {
+  std::string s;
+  const bool run = tags.size() > 4 && tags.back() - tags.front() == std::int32_t(tags.size() - 1);
+  if (run) return std::to_string(tags.front()) + ".." + std::to_string(tags.back());
+  for (std::size_t i = 0; i < tags.size() && i < 4; ++i) s += (i ? ", " : "") + std::to_string(tags[i]);
+  return tags.size() > 4 ? s + ", ..." : s;
 }
 
 // The model-face grouping key of a model-face triangle.
@@ -254,6 +277,8 @@ class ModelInference {
     classify_edges();
     classify_vertices();
     build_model_topology();
+    name_model_entities();
+    report_completion();
   }
 
  private:
@@ -288,9 +313,41 @@ class ModelInference {
   void classify_edges();
   void classify_vertices();
   void build_model_topology();
+  void name_model_entities();
+  void report_completion();
+  // Records a fresh tag that classify() gave in a full classification (see
+  // Added) at the place `where`, for report_completion().
+  void note_added(int dim, std::int32_t given, std::int32_t tag, const std::string& where);
+  std::string edge_place(std::size_t ci) const {
+    const auto v = m_.edge(EdgeId(cand_[ci].e));
+    return "edge " + vlist({m_.input_vertex(v[0]), m_.input_vertex(v[1])});
+  }
+  std::string vertex_place(std::size_t v) const { return "vertex " + std::to_string(m_.input_vertex(VertexId(v)) + 1); }
+  // Per curve tag of a full classification: its first edge and the file's
+  // surface tags around it (check_curve_faces).
+  struct CurveSurfaces {
+    struct First {
+      std::size_t ci;
+      std::uint32_t offset, size;  // in pool
+    };
+    std::unordered_map<std::int32_t, First> first;
+    std::vector<std::int32_t> pool, scratch;
+  };
+  void check_curve_faces(std::size_t ci, CurveSurfaces& seen);
 
   const TetSoup& soup_;
   const ClassifyParams& params_;
+  // The feature angle splits given face markers too, unless the file gave a
+  // full classification (whose surfaces are the model's faces as they are).
+  const bool split_markers_ = !soup_.full_classification;
+  // Model entities a full classification did not have, by dimension:
+  // inferred ones (no file tag) and pieces of one file tag beyond the first.
+  struct Added {
+    std::vector<std::int32_t> tags;
+    std::string first_where;
+    std::int32_t first_given = kNoTag;
+  };
+  std::array<Added, 3> inferred_, pieces_;
   const std::vector<std::uint32_t>& remap_;  // soup vertex index -> vertex id (or -1)
   ClassifiedTetMesh& m_;
   std::vector<std::int32_t>& tri_face_;      // the mesh's model-face tag per triangle
@@ -396,7 +453,7 @@ void ModelInference::group_model_faces() {
     if (c.t1 - c.t0 != 2) continue;
     const std::uint32_t f1 = et_[c.t0].r, f2 = et_[c.t0 + 1].r;
     if (!(key_[f1] == key_[f2])) continue;
-    if (key_[f1].given == kNoTag) {
+    if (key_[f1].given == kNoTag || split_markers_) {
       const auto ev = m_.edge(EdgeId(c.e));
       double ang = bend_angle(m_.point(ev[0]), m_.point(ev[1]), m_.point(third_vertex(m_, TriId(mf_[f1]), EdgeId(c.e))),
                               m_.point(third_vertex(m_, TriId(mf_[f2]), EdgeId(c.e))));
@@ -405,17 +462,57 @@ void ModelInference::group_model_faces() {
     uf.unite(f1, f2);
   }
   std::vector<std::int32_t> comp_of(nmf, -1), comp_given;
+  std::vector<std::uint32_t> comp_first;  // per component: its first rank
   std::vector<std::uint32_t> root_comp(nmf, std::uint32_t(-1));
   for (std::size_t r = 0; r < nmf; ++r) {
     const std::uint32_t root = uf.find(r);
     if (root_comp[root] == std::uint32_t(-1)) {
       root_comp[root] = std::uint32_t(comp_given.size());
       comp_given.push_back(key_[r].given);
+      comp_first.push_back(std::uint32_t(r));
     }
     comp_of[r] = std::int32_t(root_comp[root]);
   }
   const std::vector<std::int32_t> face_tag = assign_tags(comp_given);
   for (std::size_t r = 0; r < nmf; ++r) tri_face_[mf_[r]] = face_tag[comp_of[r]];
+  if (!soup_.full_classification) return;
+  for (std::size_t c = 0; c < comp_given.size(); ++c) {
+    if (face_tag[c] == comp_given[c]) continue;
+    const auto& v = m_.triangle(TriId(mf_[comp_first[c]]));
+    note_added(2, comp_given[c], face_tag[c],
+               "triangle " + vlist({m_.input_vertex(v[0]), m_.input_vertex(v[1]), m_.input_vertex(v[2])}));
+  }
+}
+
+// In a full classification, a curve lies on the same surfaces all along
+// (in Gmsh, a curve entity bounds or is embedded in fixed surfaces): the
+// file's surface tags around a given edge must be those around the first edge
+// of its curve, else the file contradicts itself (named at both edges). The
+// first edge's sorted tags are kept in one pool (no allocation per edge).
+void ModelInference::check_curve_faces(std::size_t ci, CurveSurfaces& seen) {
+  std::vector<std::int32_t>& here = seen.scratch;
+  here.clear();
+  for (std::uint32_t k = cand_[ci].t0; k < cand_[ci].t1; ++k) here.push_back(key_[et_[k].r].given);
+  std::sort(here.begin(), here.end());
+  here.erase(std::unique(here.begin(), here.end()), here.end());
+  const auto [it, first] = seen.first.try_emplace(
+      cand_[ci].given, CurveSurfaces::First{ci, std::uint32_t(seen.pool.size()), std::uint32_t(here.size())});
+  if (first) {
+    seen.pool.insert(seen.pool.end(), here.begin(), here.end());
+    return;
+  }
+  const CurveSurfaces::First& f = it->second;
+  const std::span<const std::int32_t> there(seen.pool.data() + f.offset, f.size);
+  if (std::equal(there.begin(), there.end(), here.begin(), here.end())) return;
+  auto set = [](std::span<const std::int32_t> v) {
+    std::string s = "{";
+    for (std::size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + std::to_string(v[i]);
+    return s + "}";
+  };
+  throw InputError(soup_.source, edge_place(ci),
+                   "contradiction: the file classifies this edge on curve " + std::to_string(cand_[ci].given) +
+                       ", whose " + edge_place(f.ci) + " lies on surfaces " + set(there) +
+                       ", but the triangles at this edge lie on surfaces " + set(here));
 }
 
 // Model edges: candidates where the model-face triangles do not form one
@@ -424,15 +521,12 @@ void ModelInference::group_model_faces() {
 void ModelInference::find_model_edges() {
   const std::size_t nc = cand_.size(), nv = m_.num_vertices();
   is_me_.assign(nc, 0);
+  CurveSurfaces curve_faces;
   for (std::size_t ci = 0; ci < nc; ++ci) {
     const std::uint32_t n = cand_[ci].t1 - cand_[ci].t0;
     const std::vector<std::int32_t> tags = n > 0 ? edge_faces(ci) : std::vector<std::int32_t>{};
     bool topo = n > 0 && (n != 2 || tags.size() >= 2);
-    if (topo && soup_.full_classification && !soup_.edges.empty() && cand_[ci].given == kNoTag) {
-      const auto v = m_.edge(EdgeId(cand_[ci].e));
-      throw InputError(soup_.source, "edge " + vlist({m_.input_vertex(v[0]), m_.input_vertex(v[1])}),
-                       "contradiction: model faces meet at this edge but the file classifies it on no model edge");
-    }
+    if (soup_.full_classification && cand_[ci].given != kNoTag) check_curve_faces(ci, curve_faces);
     is_me_[ci] = topo || cand_[ci].given != kNoTag;
   }
   vme_off_.assign(nv + 1, 0);
@@ -491,6 +585,7 @@ void ModelInference::classify_edges() {
   for (std::size_t v = 0; v < nv; ++v)
     if (!is_mv_[v] && v_me(v).size() == 2) ue.unite(v_me(v)[0], v_me(v)[1]);
   std::vector<std::int32_t> ecomp_given;
+  std::vector<std::uint32_t> ecomp_first;  // per component: its first candidate
   ecomp_.assign(nc, -1);
   std::vector<std::uint32_t> eroot(nc, std::uint32_t(-1));
   for (std::size_t ci = 0; ci < nc; ++ci) {
@@ -499,10 +594,14 @@ void ModelInference::classify_edges() {
     if (eroot[r] == std::uint32_t(-1)) {
       eroot[r] = std::uint32_t(ecomp_given.size());
       ecomp_given.push_back(cand_[ci].given);
+      ecomp_first.push_back(std::uint32_t(ci));
     }
     ecomp_[ci] = std::int32_t(eroot[r]);
   }
   edge_tag_ = assign_tags(ecomp_given);
+  if (soup_.full_classification)
+    for (std::size_t c = 0; c < ecomp_given.size(); ++c)
+      if (edge_tag_[c] != ecomp_given[c]) note_added(1, ecomp_given[c], edge_tag_[c], edge_place(ecomp_first[c]));
   auto& edge_class = TetMeshBuilder::edge_class(m_);
   // An edge with no model-face triangle lies in one region: any of its tets.
   for (std::size_t e = 0; e < ne; ++e) edge_class[e] = ModelRef{3, m_.region(m_.edge_tet(EdgeId(e)))};
@@ -526,6 +625,9 @@ void ModelInference::classify_vertices() {
   auto& vclass = TetMeshBuilder::vertex_class(m_);
   const auto& edge_class = TetMeshBuilder::edge_class(m_);
   for (std::size_t i = 0; i < mv_list.size(); ++i) vclass[mv_list[i]] = ModelRef{0, vtag[i]};
+  if (soup_.full_classification)
+    for (std::size_t i = 0; i < mv_list.size(); ++i)
+      if (vtag[i] != vgiven[i]) note_added(0, vgiven[i], vtag[i], vertex_place(mv_list[i]));
   for (std::size_t v = 0; v < nv; ++v) {
     if (is_mv_[v]) continue;
     if (!v_me(v).empty()) vclass[v] = edge_class[cand_[v_me(v)[0]].e];
@@ -546,6 +648,7 @@ void ModelInference::build_model_topology() {
     auto& r = regions[tag];
     r.dim = 3;
     r.tag = tag;
+    r.source_tag = tag;
   }
   for (std::size_t r = 0; r < mf_.size(); ++r) {
     auto& e = faces[tri_face_[mf_[r]]];
@@ -556,6 +659,7 @@ void ModelInference::build_model_topology() {
       if (key_[r].r1 != kNoTag) e.regions.push_back(key_[r].r1);
       e.bounds = e.regions;
       e.bounds.erase(std::unique(e.bounds.begin(), e.bounds.end()), e.bounds.end());
+      if (key_[r].given != kNoTag) e.source_tag = key_[r].given;
     }
   }
   for (std::size_t ci = 0; ci < cand_.size(); ++ci) {
@@ -563,6 +667,7 @@ void ModelInference::build_model_topology() {
     auto& me = edges[edge_class[cand_[ci].e].tag];
     me.dim = 1;
     me.tag = edge_class[cand_[ci].e].tag;
+    if (cand_[ci].given != kNoTag) me.source_tag = cand_[ci].given;
     const std::vector<std::int32_t> tags = edge_faces(ci);
     me.bounds.insert(me.bounds.end(), tags.begin(), tags.end());
   }
@@ -571,6 +676,7 @@ void ModelInference::build_model_topology() {
     auto& mv = verts[vclass[v].tag];
     mv.dim = 0;
     mv.tag = vclass[v].tag;
+    if (corner_given_[v] != kNoTag) mv.source_tag = corner_given_[v];
     for (std::uint32_t ci : v_me(v)) mv.bounds.push_back(edge_class[cand_[ci].e].tag);
   }
   auto finish = [](std::map<std::int32_t, ModelEntity>& src, std::vector<ModelEntity>& dst) {
@@ -585,6 +691,59 @@ void ModelInference::build_model_topology() {
   finish(edges, topo.entities[1]);
   finish(faces, topo.entities[2]);
   finish(regions, topo.entities[3]);
+}
+
+// Each model entity with a file tag takes the name of the first named group
+// (TetSoup::groups, sorted by (dim, tag)) of its dimension listing that tag.
+void ModelInference::name_model_entities() {
+  std::map<std::pair<int, std::int32_t>, const std::string*> name_of;
+  for (const NamedGroup& g : soup_.groups)
+    if (!g.name.empty() && g.dim >= 0 && g.dim <= 3)
+      for (std::int32_t t : g.entities) name_of.try_emplace({g.dim, t}, &g.name);
+  if (name_of.empty()) return;
+  for (auto& ents : TetMeshBuilder::model(m_).entities)
+    for (ModelEntity& e : ents)
+      if (e.source_tag)
+        if (auto it = name_of.find({e.dim, *e.source_tag}); it != name_of.end()) e.name = *it->second;
+}
+
+void ModelInference::note_added(int dim, std::int32_t given, std::int32_t tag, const std::string& where) {
+  Added& a = given == kNoTag ? inferred_[dim] : pieces_[dim];
+  if (a.tags.empty()) {
+    a.first_where = where;
+    a.first_given = given;
+  }
+  a.tags.push_back(tag);
+}
+
+// One warning per kind of model entity a full classification lacked: the
+// count, the fresh tags and the first place (in mesh order).
+void ModelInference::report_completion() {
+  static constexpr const char* kEntity[3][2] = {
+      {"model vertex", "model vertices"}, {"model edge", "model edges"}, {"model face", "model faces"}};
+  static constexpr const char* kFileEntity[3] = {"point", "curve", "surface"};
+  static constexpr const char* kWhereInferred[3] = {
+      "where model edges end, branch or change curve at no point of the file",
+      "where model faces meet along edges that no curve of the file covers",
+      ""};  // never: every model-face triangle of a full classification has a surface
+  static constexpr const char* kWhyPieces[3] = {
+      "one point tag given to several vertices", "split at a model vertex, or disconnected",
+      "disconnected, or between different regions"};
+  auto& out = TetMeshBuilder::classification_warnings(m_);
+  for (int d = 0; d < 3; ++d) {
+    auto sorted = [](std::vector<std::int32_t> t) { std::sort(t.begin(), t.end()); return t; };
+    const Added& inf = inferred_[d];
+    if (!inf.tags.empty())
+      out.push_back(soup_.source + ": incomplete classification completed by inference: " +
+                    std::to_string(inf.tags.size()) + " " + kEntity[d][inf.tags.size() > 1] + " added (tags " +
+                    tag_list(sorted(inf.tags)) + ") " + kWhereInferred[d] + ", the first at " + inf.first_where);
+    const Added& pc = pieces_[d];
+    if (!pc.tags.empty())
+      out.push_back(soup_.source + ": " + std::to_string(pc.tags.size()) + " " + kEntity[d][pc.tags.size() > 1] +
+                    " added (tags " + tag_list(sorted(pc.tags)) + ") for pieces of the file's " + kFileEntity[d] +
+                    "s that are not one " + kEntity[d][0] + " (" + kWhyPieces[d] + "), the first: " +
+                    kFileEntity[d] + " " + std::to_string(pc.first_given) + " at " + pc.first_where);
+  }
 }
 
 using Clock = std::chrono::steady_clock;

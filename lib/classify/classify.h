@@ -1,7 +1,11 @@
 // Classification (SPEC §3): validates a TetSoup and produces the
 // ClassifiedTetMesh, inferring the model's faces, edges and vertices where the
-// source gave only region tags, or checking the given classification against
-// the mesh topology when the source gave it all (Gmsh msh4).
+// source gave only region tags or face markers (a marker is split at sharp
+// edges by the feature angle and stays the source_tag of its model faces), or
+// checking the given classification against the mesh topology when the
+// source gave it all (Gmsh msh4): what it lacks (curves, points) is inferred
+// with fresh tags above the file's and reported in
+// ClassifiedTetMesh::classification_warnings(); contradictions are errors.
 #pragma once
 #include <string>
 
@@ -15,8 +19,9 @@ namespace polydual {
 struct ClassifyParams {
   // Dihedral angle (degrees) between neighbouring model-face triangles above
   // which a model face is split (and between model-edge segments above which a
-  // model vertex is made). Range (0, 180]: 0 excluded (every bend would
-  // split); 180 disables geometric splitting.
+  // model vertex is made). Applies to untagged model faces and inside given
+  // face markers, not to a full classification's surfaces. Range (0, 180]: 0
+  // excluded (every bend would split); 180 disables geometric splitting.
   double feature_angle_deg = 30.0;
   static constexpr double kMinFeatureAngleDeg = 0.0;  // excluded
   static constexpr double kMaxFeatureAngleDeg = 180.0;
@@ -38,7 +43,10 @@ struct ClassifyStats {
 // Validates on load (SPEC §2): finite coordinates, indices in range, every tet
 // positively oriented by the exact predicate (inverted or zero-volume tets are
 // errors naming the tet), conformity, unused vertices. Throws InputError naming
-// soup.source and the place; UsageError if params do not validate().
+// soup.source and the place (also for the contradictions of a full
+// classification: a triangle on two surfaces, a boundary or interface
+// triangle on none, a curve whose edges lie on different surfaces);
+// UsageError if params do not validate().
 ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params = {},
                            ClassifyStats* stats = nullptr);
 

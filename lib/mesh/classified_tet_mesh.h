@@ -12,6 +12,7 @@
 #include <climits>
 #include <bit>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -69,11 +70,24 @@ inline constexpr auto kEdgeOf = [] {
 // One entity of the geometric model and the higher-dimensional entities it bounds
 // (a model face lists its regions: 0 for a fracture inside one region, 1 external,
 // 2 interface; a model edge lists its faces; a model vertex its edges).
+//
+// Provenance: `source_tag` is the tag the file gave this entity's elements
+// (a region tag; a Gmsh surface / curve / point entity; a face marker of
+// TetGen .face, Medit triangle refs, Gmsh 2.2 physicals, VTU cell data),
+// std::nullopt when the entity was inferred. One file tag can give several
+// model entities: a marker split at sharp edges (the feature angle) or
+// spanning disconnected parts gives model faces of different `tag`s sharing
+// one `source_tag` (the marker is their group, e.g. an OpenFOAM patch).
+// `name` is the name of the first named group of the soup (TetSoup::groups,
+// in (dim, tag) order) of the same dimension that lists `source_tag`, "" when
+// none does.
 struct ModelEntity {
   int dim = 0;
   std::int32_t tag = 0;
   std::vector<std::int32_t> bounds;  // tags of dimension dim+1, sorted, unique
   std::vector<std::int32_t> regions; // for faces: regions on its sides (1 or 2 tags, equal twice for a fracture)
+  std::optional<std::int32_t> source_tag;
+  std::string name;
 };
 
 // The kind of a model face (dim 2) from its regions: one region listed ->
@@ -224,6 +238,10 @@ class ClassifiedTetMesh {
   }
   bool on_model_face(TriId f) const { return tri_face_[f.idx] != kNoFace; }
   const ModelTopology& model() const { return model_; }
+  // What classify() completed or changed in a classification the file gave
+  // as complete (TetSoup::full_classification): one line each, starting with
+  // the file name, for the command to print. Empty otherwise.
+  const std::vector<std::string>& classification_warnings() const { return warnings_; }
 
   // Volume of tet t (double; for statistics only).
   double tet_volume(TetId t) const;
@@ -255,6 +273,7 @@ class ClassifiedTetMesh {
   static constexpr std::int32_t kNoFace = INT32_MIN;
   std::vector<std::int32_t> tri_face_;
   ModelTopology model_;
+  std::vector<std::string> warnings_;
 };
 
 // Builds the connectivity of a ClassifiedTetMesh (adjacency, triangles, edges,
@@ -275,6 +294,7 @@ class TetMeshBuilder {
   static std::vector<std::int32_t>& triangle_face(ClassifiedTetMesh& m) { return m.tri_face_; }
   static constexpr std::int32_t kNoFace = ClassifiedTetMesh::kNoFace;
   static ModelTopology& model(ClassifiedTetMesh& m) { return m.model_; }
+  static std::vector<std::string>& classification_warnings(ClassifiedTetMesh& m) { return m.warnings_; }
 
  private:
   // build_topology()'s phases, in order (lib/mesh/classified_tet_mesh.cpp).
