@@ -68,6 +68,7 @@ int cmd_info(const Settings& s) {
   clock = Stopwatch();
   const ClassifiedTetMesh m = classify(soup, s.params.classify);
   seconds.set("classify", clock.seconds());
+  print_warnings(m.classification_warnings(), s.quiet);
   const Json model = model_summary(m);
   Json j = Json::object();
   j.set("file", path);

@@ -66,6 +66,8 @@ void run_pipeline(ConvertResult& r, const TetSoup& soup, const PipelineParams& p
     stats = st.to_json();
     return m;
   });
+  // What the classification completed (an incomplete given classification).
+  for (const std::string& w : r.primal.classification_warnings()) r.warnings.push_back(w);
   // Algorithm 1 as three stages (design §4): the draft (steps 1-7 and the
   // cleanup's hints), the cleanup (§2.8), the cells (step 8).
   DualStats dual_stats;

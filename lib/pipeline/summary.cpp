@@ -150,6 +150,9 @@ Json model_summary(const ClassifiedTetMesh& m) {
     Json o = Json::object();
     o.set("tag", f.tag);
     o.set("kind", face_kind_name(f));
+    // The file's marker (group) when the face was split from it or renamed, and its name.
+    if (f.source_tag && *f.source_tag != f.tag) o.set("source_tag", *f.source_tag);
+    if (!f.name.empty()) o.set("name", f.name);
     Json r = Json::array();
     for (auto x : f.bounds) r.push(x);
     o.set("regions", r);
