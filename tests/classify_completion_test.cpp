@@ -1,6 +1,6 @@
 // A full classification (Gmsh msh 4.1 with $Entities) that lacks curves or
 // points is completed by inference with a warning; what contradicts itself is
-// refused, naming the place (SPEC §3; proofs/classification.md L14). The
+// refused, naming the place (design §3; proofs/classification.md L14). The
 // incomplete files are generated domains written by lib/io's msh writer with
 // some curves or points left out.
 #include <gmock/gmock.h>
@@ -14,7 +14,7 @@
 #include <string>
 
 #include "classify/classify.h"
-#include "classify_volume.h"
+#include "exact_volume.h"
 #include "core/error.h"
 #include "dual/build_dual.h"
 #include "generate/domains.h"

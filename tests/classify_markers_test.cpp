@@ -1,4 +1,4 @@
-// The feature angle inside one face marker (SPEC §3; proofs/classification.md
+// The feature angle inside one face marker (design §3; proofs/classification.md
 // L13): TetGen .face markers and Medit triangle refs that span sharp edges are
 // split into model faces there, with model edges and vertices at the sharp
 // edges and corners; each model face keeps its marker as source_tag (and the
@@ -13,7 +13,7 @@
 #include <string>
 
 #include "classify/classify.h"
-#include "classify_volume.h"
+#include "exact_volume.h"
 #include "dual/build_dual.h"
 #include "generate/random_mesh.h"
 #include "io/medit_io.h"

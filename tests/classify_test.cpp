@@ -1,4 +1,4 @@
-// Classification inference and checks (SPEC §3).
+// Classification inference and checks (design §3).
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 

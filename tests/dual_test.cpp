@@ -12,6 +12,7 @@
 #include "classify/classify.h"
 #include "core/error.h"
 #include "dual/build_dual.h"
+#include "exact_volume.h"
 #include "generate/random_mesh.h"
 #include "mesh/validate.h"
 #include "quality/star_verdict.h"
@@ -20,51 +21,7 @@ using namespace polydual;
 
 namespace {
 
-// Exact sum of decomposition volumes (x6) per material, with rational means.
-std::map<std::int32_t, CGAL::Gmpq> exact_material_volumes(const PolyMesh& pm) {
-  using Q = CGAL::Gmpq;
-  struct QV { Q x, y, z; };
-  auto mean = [&](const std::vector<PointId>& pts) {
-    QV s{Q(0), Q(0), Q(0)};
-    for (PointId p : pts) { s.x += Q(pm.points[p.idx].x); s.y += Q(pm.points[p.idx].y); s.z += Q(pm.points[p.idx].z); }
-    Q n(int(pts.size()));
-    return QV{s.x / n, s.y / n, s.z / n};
-  };
-  auto qv = [&](PointId p) { return QV{Q(pm.points[p.idx].x), Q(pm.points[p.idx].y), Q(pm.points[p.idx].z)}; };
-  auto det = [](const QV& a, const QV& b, const QV& c) {
-    return a.x * (b.y * c.z - b.z * c.y) - a.y * (b.x * c.z - b.z * c.x) + a.z * (b.x * c.y - b.y * c.x);
-  };
-  std::map<std::int32_t, Q> vol;
-  for (std::size_t c = 0; c < pm.num_cells(); ++c) {
-    QV R = mean(pm.cell_points(CellId(c)));
-    Q sum(0);
-    for (HalfFace h : pm.cell(CellId(c))) {
-      auto loop = pm.oriented_loop(h);
-      QV F = mean(loop);
-      for (std::size_t k = 0; k < loop.size(); ++k) {
-        QV a = qv(loop[k]), b = qv(loop[(k + 1) % loop.size()]);
-        sum += det({a.x - R.x, a.y - R.y, a.z - R.z}, {b.x - R.x, b.y - R.y, b.z - R.z},
-                   {F.x - R.x, F.y - R.y, F.z - R.z});
-      }
-    }
-    vol[pm.cell_material[c]] += sum;
-  }
-  return vol;
-}
 
-std::map<std::int32_t, CGAL::Gmpq> exact_primal_volumes(const ClassifiedTetMesh& m) {
-  using Q = CGAL::Gmpq;
-  std::map<std::int32_t, Q> vol;
-  for (std::size_t t = 0; t < m.num_tets(); ++t) {
-    const auto& v = m.tet(TetId(t));
-    auto P = [&](int i) { return m.point(v[i]); };
-    Q ux = Q(P(1).x) - Q(P(0).x), uy = Q(P(1).y) - Q(P(0).y), uz = Q(P(1).z) - Q(P(0).z);
-    Q vx = Q(P(2).x) - Q(P(0).x), vy = Q(P(2).y) - Q(P(0).y), vz = Q(P(2).z) - Q(P(0).z);
-    Q wx = Q(P(3).x) - Q(P(0).x), wy = Q(P(3).y) - Q(P(0).y), wz = Q(P(3).z) - Q(P(0).z);
-    vol[m.region(TetId(t))] += ux * (vy * wz - vz * wy) - uy * (vx * wz - vz * wx) + uz * (vx * wy - vy * wx);
-  }
-  return vol;
-}
 
 std::size_t count_sides(const ClassifiedTetMesh& m) {
   // Independent count: components of each vertex star through non-model triangles (BFS).
@@ -156,8 +113,8 @@ DualCounts check_invariants(const TetSoup& soup, bool planar, const std::string&
     EXPECT_TRUE(found) << "model vertex at primal vertex " << v;
   }
   if (planar) {
-    auto dv = exact_material_volumes(pm);
-    auto pv = exact_primal_volumes(m);
+    auto dv = polydual::testing::exact_dual_volumes(pm);
+    auto pv = polydual::testing::exact_primal_volumes(m);
     EXPECT_EQ(dv.size(), pv.size());
     for (auto& [tag, q] : pv) EXPECT_TRUE(dv[tag] == q) << "material " << tag << ": dual " << CGAL::to_double(dv[tag]) / 6 << " primal " << CGAL::to_double(q) / 6;
   }

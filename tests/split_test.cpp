@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "dual/build_dual.h"
 #include "generate/domains.h"
+#include "exact_volume.h"
 #include "generate/random_mesh.h"
 #include "mesh/validate.h"
 #include "quality/star_verdict.h"
@@ -21,38 +22,6 @@ using namespace polydual;
 
 namespace {
 
-// Exact sum of decomposition volumes (x6) per material, with rational means
-// (the helper of tests/dual_test.cpp).
-std::map<std::int32_t, CGAL::Gmpq> exact_material_volumes(const PolyMesh& pm) {
-  using Q = CGAL::Gmpq;
-  struct QV { Q x, y, z; };
-  auto mean = [&](const std::vector<PointId>& pts) {
-    QV s{Q(0), Q(0), Q(0)};
-    for (PointId p : pts) { s.x += Q(pm.points[p.idx].x); s.y += Q(pm.points[p.idx].y); s.z += Q(pm.points[p.idx].z); }
-    Q n(int(pts.size()));
-    return QV{s.x / n, s.y / n, s.z / n};
-  };
-  auto qv = [&](PointId p) { return QV{Q(pm.points[p.idx].x), Q(pm.points[p.idx].y), Q(pm.points[p.idx].z)}; };
-  auto det = [](const QV& a, const QV& b, const QV& c) {
-    return a.x * (b.y * c.z - b.z * c.y) - a.y * (b.x * c.z - b.z * c.x) + a.z * (b.x * c.y - b.y * c.x);
-  };
-  std::map<std::int32_t, Q> vol;
-  for (std::size_t c = 0; c < pm.num_cells(); ++c) {
-    QV R = mean(pm.cell_points(CellId(c)));
-    Q sum(0);
-    for (HalfFace h : pm.cell(CellId(c))) {
-      auto loop = pm.oriented_loop(h);
-      QV F = mean(loop);
-      for (std::size_t k = 0; k < loop.size(); ++k) {
-        QV a = qv(loop[k]), b = qv(loop[(k + 1) % loop.size()]);
-        sum += det({a.x - R.x, a.y - R.y, a.z - R.z}, {b.x - R.x, b.y - R.y, b.z - R.z},
-                   {F.x - R.x, F.y - R.y, F.z - R.z});
-      }
-    }
-    vol[pm.cell_material[c]] += sum;
-  }
-  return vol;
-}
 
 std::vector<CellId> invalid_cells(const PolyMesh& pm) {
   std::vector<CellId> out;
@@ -79,7 +48,7 @@ std::vector<std::vector<PointId>> face_loops(const PolyMesh& pm) {
 SplitStats split_and_check(PolyMesh& pm, const ClassifiedTetMesh* primal) {
   const std::vector<CellId> bad = invalid_cells(pm);
   const ValidationReport before = validate(pm, primal);
-  const auto vol_before = exact_material_volumes(pm);
+  const auto vol_before = polydual::testing::exact_dual_volumes(pm);
   const auto loops_before = face_loops(pm);
   const std::size_t cells_before = pm.num_cells(), faces_before = pm.num_faces();
   const std::vector<CellId> owner = pm.face_owner, neighbour = pm.face_neighbour;
@@ -94,7 +63,7 @@ SplitStats split_and_check(PolyMesh& pm, const ClassifiedTetMesh* primal) {
   EXPECT_EQ(after.closed_cells, after.cells);  // L3
   EXPECT_EQ(after.face_errors, before.face_errors);
   EXPECT_EQ(after.missing_model_entities, before.missing_model_entities);
-  EXPECT_EQ(exact_material_volumes(pm), vol_before);  // L4
+  EXPECT_EQ(polydual::testing::exact_dual_volumes(pm), vol_before);  // L4
   // L3: existing faces keep their loops; new faces are interior between
   // two distinct pieces of one origin.
   const auto loops_after = face_loops(pm);

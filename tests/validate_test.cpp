@@ -1,4 +1,4 @@
-// validate() (lib/mesh/validate.h, SPEC §10) on good meshes and on meshes
+// validate() (lib/mesh/validate.h, design §10) on good meshes and on meshes
 // broken in one way each: one test per kind of error it reports, so that a
 // validate that always said "ok" fails. Meshes are built by hand (boxes of six
 // quads) and by the real pipeline (classify + build_dual on generated meshes).
@@ -349,7 +349,7 @@ TEST(Validate, BadFaceInThePipelineDual) {
   EXPECT_FALSE(r.ok());
 }
 
-// ---- model entities (SPEC §10)
+// ---- model entities (design §10)
 
 TEST(Validate, ModelVertexNotAmongTheDualPoints) {
   const Pipeline& p = cube_domain();

@@ -1,4 +1,4 @@
-// Classification (SPEC §3). The model entities are found bottom-up from the
+// Classification (design §3). The model entities are found bottom-up from the
 // mesh: model-face triangles -> model faces (connected pieces, split by given
 // tags, region pairs and the feature angle, which also splits a given face
 // marker unless the file gave a full classification); primal edges where the
@@ -256,7 +256,7 @@ struct Cand {
   std::int32_t given;       // given model-edge tag or kNoTag
 };
 
-// The inference of the model's faces, edges and vertices (SPEC §3) on a mesh
+// The inference of the model's faces, edges and vertices (design §3) on a mesh
 // with its topology built, one phase per member function, in this order.
 // Everything works on sparse lists: the model-face triangles (a few per cent
 // of all triangles) and the candidate model edges, in increasing id order, so

@@ -1,4 +1,4 @@
-// Classification (SPEC §3): validates a TetSoup and produces the
+// Classification (design §3): validates a TetSoup and produces the
 // ClassifiedTetMesh, inferring the model's faces, edges and vertices where the
 // source gave only region tags or face markers (a marker is split at sharp
 // edges by the feature angle and stays the source_tag of its model faces), or
@@ -40,7 +40,7 @@ struct ClassifyStats {
   Json to_json() const;
 };
 
-// Validates on load (SPEC §2): finite coordinates, indices in range, every tet
+// Validates on load (design §2): finite coordinates, indices in range, every tet
 // positively oriented by the exact predicate (inverted or zero-volume tets are
 // errors naming the tet), conformity, unused vertices. Throws InputError naming
 // soup.source and the place (also for the contradictions of a full

@@ -1,4 +1,4 @@
-// Spatial renumbering of the input (SPEC §12: cost per tet flat in the mesh
+// Spatial renumbering of the input (design §12: cost per tet flat in the mesh
 // size). Every later stage walks adjacency (edge rings, stars, face pairs); in
 // the order mesh generators write their files, neighbours sit far apart in
 // memory and those walks are cache misses. classify() therefore numbers

@@ -1,4 +1,4 @@
-// The classified tetrahedral mesh every later stage reads (SPEC §1, §3).
+// The classified tetrahedral mesh every later stage reads (design §1, §3).
 // Built by classify() from a TetSoup; immutable afterwards.
 //
 // Conventions:

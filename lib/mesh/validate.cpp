@@ -117,7 +117,7 @@ void check_cells(const PolyMesh& pm, const std::vector<bool>& loop_in_range, Val
   }
 }
 
-// SPEC §10: every model vertex is a dual point (at its place), every model edge
+// design §10: every model vertex is a dual point (at its place), every model edge
 // is covered by dual edges, every model face by dual faces with its tag.
 void check_model_entities(const PolyMesh& pm, const std::vector<bool>& loop_in_range,
                           const ClassifiedTetMesh& primal, ValidationReport& r) {
@@ -220,6 +220,19 @@ ValidationReport validate(const PolyMesh& pm, const ClassifiedTetMesh* primal, d
   return r;
 }
 
+Json volume_mismatches_json(const std::vector<VolumeMismatch>& mismatches) {
+  Json mism = Json::array();
+  for (const VolumeMismatch& m : mismatches) {
+    Json o = Json::object();
+    o.set("material", m.material);
+    o.set("dual", m.dual);
+    o.set("primal", m.primal);
+    o.set("rel_diff", m.rel_diff);
+    mism.push(o);
+  }
+  return mism;
+}
+
 Json ValidationReport::to_json() const {
   Json j = Json::object();
   j.set("cells", cells);
@@ -247,16 +260,7 @@ Json ValidationReport::to_json() const {
   for (std::int32_t tag : volume_checked_materials) checked.push(tag);
   j.set("volume_checked_materials", checked);
   j.set("volume_rel_tol", volume_rel_tol);
-  Json mism = Json::array();
-  for (const VolumeMismatch& m : volume_mismatches) {
-    Json o = Json::object();
-    o.set("material", m.material);
-    o.set("dual", m.dual);
-    o.set("primal", m.primal);
-    o.set("rel_diff", m.rel_diff);
-    mism.push(o);
-  }
-  j.set("volume_mismatches", mism);
+  j.set("volume_mismatches", volume_mismatches_json(volume_mismatches));
   j.set("ok", ok());
   j.set("geometry_ok", geometry_ok());
   return j;

@@ -1,4 +1,4 @@
-// Invariant checks on a PolyMesh (SPEC §10), used by tests, by the CLI's
+// Invariant checks on a PolyMesh (design §10), used by tests, by the CLI's
 // `check` and between stages. Combinatorial checks are exact by nature; the
 // volumes are double sums compared with a relative tolerance (the exact
 // identity is checked with rationals in tests/dual_test.cpp).
@@ -29,6 +29,9 @@ struct VolumeMismatch {
   double dual = 0, primal = 0;
   double rel_diff = 0;  // |dual - primal| / max(|dual|, |primal|)
 };
+
+// [{"material", "dual", "primal", "rel_diff"}, ...]
+Json volume_mismatches_json(const std::vector<VolumeMismatch>& mismatches);
 
 struct ValidationReport {
   std::size_t cells = 0, faces = 0, points = 0;

@@ -1,6 +1,6 @@
 // The library entry of polydual: the paper's pipeline as explicit stages
 // (docs/design.md, "Pipeline"):
-//   classify (§2.1, SPEC §3) -> [tet pre-optimisation: planned] -> build dual
+//   classify (§2.1, design §3) -> [tet pre-optimisation: planned] -> build dual
 //   (Algorithm 1 steps 1-7) -> cleanup (§2.8) -> cells (step 8) -> check
 //   (exact star test, §3.1) -> optimise (§3.3) -> check -> split of the cells
 //   still invalid (split/split.h) -> check.

@@ -182,16 +182,7 @@ Json mesh_summary(const PolyMesh& pm, const CheckResult& check, const Classified
   // Materials bounded by planar model faces: the dual's volume against the
   // primal's (design §10; double sums within a relative tolerance).
   j.set("geometry_ok", rep.geometry_ok());
-  Json mism = Json::array();
-  for (const VolumeMismatch& m : rep.volume_mismatches) {
-    Json o = Json::object();
-    o.set("material", m.material);
-    o.set("dual", m.dual);
-    o.set("primal", m.primal);
-    o.set("rel_diff", m.rel_diff);
-    mism.push(o);
-  }
-  j.set("volume_mismatches", mism);
+  j.set("volume_mismatches", volume_mismatches_json(rep.volume_mismatches));
   return j;
 }
 

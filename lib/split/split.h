@@ -1,4 +1,4 @@
-// The split stage (design §8, SPEC §8 "Every cell valid, certified"): replaces
+// The split stage (design §8, "every cell valid, certified"): replaces
 // cells that no point placement makes star-shaped (slit cells at fracture tips,
 // cells at sheet crossings and concave model edges) by star-shaped pieces,
 // conformally and without touching any other cell's faces.

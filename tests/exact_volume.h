@@ -1,5 +1,5 @@
 // Exact per-material volumes (x6, CGAL rationals) of a dual and of its primal,
-// for the classification tests: on a planar-faced domain whose model edges and
+// shared by the tests (dual, split, classification): on a planar-faced domain whose model edges and
 // vertices were all found, the dual covers each material exactly.
 #pragma once
 #include <CGAL/Gmpq.h>
@@ -23,7 +23,7 @@ inline QPoint exact(const Point3& p) { return {Q(p.x), Q(p.y), Q(p.z)}; }
 
 // Sum over each cell of the tets (R, a, b, F): R the mean of the cell's
 // points, F the mean of the face's, (a, b) the face's edges in the cell's
-// outward order (SPEC §5's decomposition), in exact rationals.
+// outward order (design §5), in exact rationals.
 inline std::map<std::int32_t, Q> exact_dual_volumes(const PolyMesh& pm) {
   auto mean = [&](const auto& pts) {
     QPoint s{Q(0), Q(0), Q(0)};
