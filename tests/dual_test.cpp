@@ -53,6 +53,7 @@ std::size_t count_sides(const ClassifiedTetMesh& m) {
 // exercise what they are meant to?).
 struct DualCounts {
   std::size_t interface_faces = 0, fracture_faces = 0, merged_points = 0;
+  std::size_t fracture_tags = 0;  // distinct sheet markers (source tags) of fracture model faces
 };
 
 DualCounts check_invariants(const TetSoup& soup, bool planar, const std::string& what) {
@@ -66,6 +67,10 @@ DualCounts check_invariants(const TetSoup& soup, bool planar, const std::string&
     counts.interface_faces += k == FaceKind::Interface;
     counts.fracture_faces += k == FaceKind::Fracture;
   }
+  std::set<std::int32_t> sheets;
+  for (const ModelEntity& f : m.model().entities[2])
+    if (face_kind(f) == FaceKind::Fracture && f.source_tag) sheets.insert(*f.source_tag);
+  counts.fracture_tags = sheets.size();
   ValidationReport r = validate(pm, &m);
   EXPECT_EQ(r.face_errors, 0u);
   EXPECT_EQ(r.closed_cells, r.cells);
@@ -185,12 +190,14 @@ TEST(Dual, KuhnLatticeTwoMaterials) {
 }
 
 TEST(Dual, RandomMeshInvariants) {
-  // 1040 random classified meshes: one region (planar faces: exact volume
-  // identity), two regions (jagged interface), with fracture, lattice points.
+  // 1300 random classified meshes: one region (planar faces: exact volume
+  // identity), two regions (jagged interface), with fracture, with two sheets
+  // crossing (one ending inside, one reaching the outer boundary), lattice points.
   // Each family must exercise what it is there for: interface faces in the
   // two-region meshes, fracture faces (capped on both sides) in the fractured
   // ones, exact merges of cospherical centres in the lattice ones.
-  std::size_t meshes[4] = {0, 0, 0, 0}, interface_meshes = 0, fracture_meshes = 0, merging_meshes = 0;
+  std::size_t meshes[5] = {0, 0, 0, 0, 0}, interface_meshes = 0, fracture_meshes = 0, merging_meshes = 0,
+              crossing_meshes = 0;
   for (std::uint64_t seed = 1; seed <= 260; ++seed) {
     RandomMeshParams p;
     p.seed = seed;
@@ -205,7 +212,14 @@ TEST(Dual, RandomMeshInvariants) {
     fracture_meshes += check_invariants(random_classified_mesh(p), false, "fracture seed " + std::to_string(seed))
                            .fracture_faces > 0;
     ++meshes[2];
+    // Two sheets crossing along a line, one ending inside, one reaching the
+    // outer boundary (two fracture model faces).
     p.regions = 1;
+    p.crossing_sheet = true;
+    crossing_meshes += check_invariants(random_classified_mesh(p), false, "crossing sheets seed " + std::to_string(seed))
+                           .fracture_tags >= 2;
+    ++meshes[4];
+    p.crossing_sheet = false;
     p.fracture = false;
     p.lattice_points = true;
     merging_meshes += check_invariants(random_classified_mesh(p), true, "lattice seed " + std::to_string(seed))
@@ -213,15 +227,16 @@ TEST(Dual, RandomMeshInvariants) {
     ++meshes[3];
     if (HasFailure()) break;
   }
-  for (std::size_t n : meshes) EXPECT_EQ(n, 260u);
+  for (std::size_t n : meshes) EXPECT_EQ(n, 260u);  // 1300 meshes in all
   // Every two-region and fractured mesh has its interface/fracture faces;
   // the lattice points make cospherical neighbours in most lattice meshes
   // (177 of the 260 seeds).
   EXPECT_EQ(interface_meshes, 260u);
   EXPECT_EQ(fracture_meshes, 260u);
   EXPECT_GE(merging_meshes, 150u);
+  EXPECT_GE(crossing_meshes, 200u);
   std::cout << "meshes with interface faces " << interface_meshes << ", fracture faces " << fracture_meshes
-            << ", exact merges " << merging_meshes << " (of 260 each)\n";
+            << ", exact merges " << merging_meshes << ", two crossing sheets " << crossing_meshes << " (of 260 each)\n";
 }
 
 TEST(Dual, Deterministic) {

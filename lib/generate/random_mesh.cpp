@@ -108,12 +108,13 @@ TetSoup random_classified_mesh(const RandomMeshParams& params) {
         const std::uint32_t b = cell_id.at(nb);
         if (b < a || soup.tet_region[a] != soup.tet_region[b]) continue;  // each pair once
         const Point3 gb = centroid(soup.points, soup.tets[b]);
-        if (!(ga.x < 0.6 && gb.x < 0.6)) continue;
-        if (!((ga.z < 0.5 && gb.z > 0.5) || (ga.z > 0.5 && gb.z < 0.5))) continue;
+        const bool first = ga.x < 0.6 && gb.x < 0.6 && ((ga.z < 0.5) != (gb.z < 0.5));
+        const bool second = params.crossing_sheet && ga.x > 0.3 && gb.x > 0.3 && ((ga.y < 0.5) != (gb.y < 0.5));
+        if (!first && !second) continue;
         TaggedTriangle f;
         for (int k = 0, j = 0; k < 4; ++k)
           if (k != i) f.v[j++] = cells[a]->vertex(k)->info();
-        f.tag = kRandomFractureTag;
+        f.tag = first ? kRandomFractureTag : kRandomFractureTag + 1;  // one tag per triangle
         soup.triangles.push_back(f);
       }
     }

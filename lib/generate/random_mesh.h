@@ -20,6 +20,11 @@ struct RandomMeshParams {
   // Adds a zigzag internal surface with free edges (tag kRandomFractureTag, see
   // random_classified_mesh).
   bool fracture = false;
+  // Adds a second sheet (tag kRandomFractureTag + 1) between tets whose
+  // centroids lie on opposite sides of y = 0.5 and both have x > 0.3: it
+  // crosses the first sheet along a line, ends inside at x ~ 0.3 and reaches
+  // the outer boundary at x = 1. Needs fracture.
+  bool crossing_sheet = false;
   // Snap the random points to the grid of spacing 1/8 (duplicates merged): many
   // coplanar and cospherical points, the degenerate inputs exact predicates
   // must survive. Points may then also lie on the box's faces and edges.
