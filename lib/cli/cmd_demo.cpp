@@ -67,12 +67,12 @@ Json run_domain(Domain d, const Settings& s, const std::filesystem::path& dir) {
 
 // Where the cells that stay invalid sit (paper §4: concave edges/corners and
 // fracture tips), and how many are slit cells at fracture tips.
-void print_remaining_invalid(const Json& j) {
+void print_remaining_invalid(const std::string& domain, const Json& j) {
   if (val(j, "invalid_after") == "0") return;
   const Json& by = *j.find("invalid_by_class");
   std::printf("%s: %s cells stay invalid: %s at model vertices, %s at model edges, %s on model faces, "
               "%s interior; %s slit cells (fracture tips)\n",
-              j.find("domain")->dump(0).c_str(), val(j, "invalid_after").c_str(), val(by, "model_vertex").c_str(),
+              domain.c_str(), val(j, "invalid_after").c_str(), val(by, "model_vertex").c_str(),
               val(by, "model_edge").c_str(), val(by, "model_face").c_str(), val(by, "interior").c_str(),
               val(j, "slit_cells").c_str());
 }
@@ -88,7 +88,7 @@ int cmd_demo(const Settings& s) {
   std::printf("%-9s %8s %8s %9s %8s %8s %7s %6s %8s\n", "domain", "tets", "cells", "faces", "invalid0",
               "invalid", "closed", "check", "seconds");
   for (Domain d : domains) all.push(run_domain(d, s, dir));
-  for (std::size_t i = 0; i < domains.size(); ++i) print_remaining_invalid(all.at(i));
+  for (std::size_t i = 0; i < domains.size(); ++i) print_remaining_invalid(domain_name(domains[i]), all.at(i));
   write_file_atomically(dir / "summary.json", [&](std::ostream& os) { os << all.dump() << "\n"; });
   std::printf("outputs in %s/ (open the .vtu files in ParaView; *_case/ are OpenFOAM cases)\n",
               dir.string().c_str());
