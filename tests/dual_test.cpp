@@ -14,6 +14,7 @@
 #include "dual/build_dual.h"
 #include "exact_volume.h"
 #include "generate/random_mesh.h"
+#include "io/unattached.h"
 #include "mesh/validate.h"
 #include "quality/star_verdict.h"
 
@@ -190,14 +191,15 @@ TEST(Dual, KuhnLatticeTwoMaterials) {
 }
 
 TEST(Dual, RandomMeshInvariants) {
-  // 1300 random classified meshes: one region (planar faces: exact volume
+  // 1560 random classified meshes: one region (planar faces: exact volume
   // identity), two regions (jagged interface), with fracture, with two sheets
-  // crossing (one ending inside, one reaching the outer boundary), lattice points.
+  // crossing (one ending inside, one reaching the outer boundary), with
+  // construction points, free curves and sheet parts outside the volume, lattice points.
   // Each family must exercise what it is there for: interface faces in the
   // two-region meshes, fracture faces (capped on both sides) in the fractured
   // ones, exact merges of cospherical centres in the lattice ones.
-  std::size_t meshes[5] = {0, 0, 0, 0, 0}, interface_meshes = 0, fracture_meshes = 0, merging_meshes = 0,
-              crossing_meshes = 0;
+  std::size_t meshes[6] = {0, 0, 0, 0, 0, 0}, interface_meshes = 0, fracture_meshes = 0, merging_meshes = 0,
+              crossing_meshes = 0, unattached_meshes = 0;
   for (std::uint64_t seed = 1; seed <= 260; ++seed) {
     RandomMeshParams p;
     p.seed = seed;
@@ -219,7 +221,25 @@ TEST(Dual, RandomMeshInvariants) {
     crossing_meshes += check_invariants(random_classified_mesh(p), false, "crossing sheets seed " + std::to_string(seed))
                            .fracture_tags >= 2;
     ++meshes[4];
+    // What real files carry beside the tets, dropped as a reader drops it:
+    // the same dual as without it.
     p.crossing_sheet = false;
+    p.unattached = true;
+    {
+      TetSoup soup = random_classified_mesh(p);
+      io::drop_unattached(soup);
+      unattached_meshes += soup.ignored.points >= 1 && soup.ignored.curves >= 2 && soup.ignored.surfaces >= 1 &&
+                           soup.ignored.elements >= 5;
+      check_invariants(soup, false, "unattached seed " + std::to_string(seed));
+      RandomMeshParams clean = p;
+      clean.unattached = false;
+      const PolyMesh a = build_dual(classify(soup)), b = build_dual(classify(random_classified_mesh(clean)));
+      EXPECT_TRUE(a.points == b.points && a.face_points == b.face_points && a.cell_offsets == b.cell_offsets &&
+                  a.cell_primal == b.cell_primal)
+          << "unattached seed " << seed;
+    }
+    ++meshes[5];
+    p.unattached = false;
     p.fracture = false;
     p.lattice_points = true;
     merging_meshes += check_invariants(random_classified_mesh(p), true, "lattice seed " + std::to_string(seed))
@@ -227,7 +247,7 @@ TEST(Dual, RandomMeshInvariants) {
     ++meshes[3];
     if (HasFailure()) break;
   }
-  for (std::size_t n : meshes) EXPECT_EQ(n, 260u);  // 1300 meshes in all
+  for (std::size_t n : meshes) EXPECT_EQ(n, 260u);  // 1560 meshes in all
   // Every two-region and fractured mesh has its interface/fracture faces;
   // the lattice points make cospherical neighbours in most lattice meshes
   // (177 of the 260 seeds).
@@ -235,8 +255,10 @@ TEST(Dual, RandomMeshInvariants) {
   EXPECT_EQ(fracture_meshes, 260u);
   EXPECT_GE(merging_meshes, 150u);
   EXPECT_GE(crossing_meshes, 200u);
+  EXPECT_EQ(unattached_meshes, 260u);
   std::cout << "meshes with interface faces " << interface_meshes << ", fracture faces " << fracture_meshes
-            << ", exact merges " << merging_meshes << ", two crossing sheets " << crossing_meshes << " (of 260 each)\n";
+            << ", exact merges " << merging_meshes << ", two crossing sheets " << crossing_meshes
+            << ", unattached entities dropped " << unattached_meshes << " (of 260 each)\n";
 }
 
 TEST(Dual, Deterministic) {

@@ -51,6 +51,22 @@ Point3 centroid(const std::vector<Point3>& pts, const std::array<std::uint32_t, 
 
 }  // namespace
 
+namespace {
+// See RandomMeshParams::unattached. The points are appended after the tets'
+// vertices, so the tets' input numbering does not change.
+void add_unattached(TetSoup& soup, bool with_sheet_part) {
+  const auto base = static_cast<std::uint32_t>(soup.points.size());
+  soup.points.push_back({0.5, 0.5, 1.5});
+  soup.points.push_back({0.2, 0.8, 1.7});
+  soup.points.push_back({0.9, 0.1, 1.6});
+  soup.corners.push_back(TaggedVertex{base, kRandomUnattachedTag});
+  soup.edges.push_back(TaggedEdge{{base, base + 1}, kRandomUnattachedTag + 1});
+  soup.edges.push_back(TaggedEdge{{base + 2, base + 2}, kRandomUnattachedTag + 2});  // collapsed curve
+  soup.triangles.push_back(TaggedTriangle{{base, base + 1, base + 2}, kRandomUnattachedTag + 3});
+  if (with_sheet_part) soup.triangles.push_back(TaggedTriangle{{0, base, base + 1}, kRandomFractureTag});
+}
+}  // namespace
+
 TetSoup random_classified_mesh(const RandomMeshParams& params) {
   if (params.num_points < 0) throw UsageError("random mesh: num_points must be >= 0");
   if (params.regions != 1 && params.regions != 2)
@@ -119,6 +135,7 @@ TetSoup random_classified_mesh(const RandomMeshParams& params) {
       }
     }
   }
+  if (params.unattached) add_unattached(soup, params.fracture);
   return soup;
 }
 

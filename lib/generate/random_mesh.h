@@ -25,6 +25,14 @@ struct RandomMeshParams {
   // crosses the first sheet along a line, ends inside at x ~ 0.3 and reaches
   // the outer boundary at x = 1. Needs fracture.
   bool crossing_sheet = false;
+  // Adds what real files carry beside the tets (io/unattached.h): three points
+  // above the box used by no tet, a construction point (corner, tag
+  // kRandomUnattachedTag) on one of them, a free curve and a free sheet
+  // triangle through them, a degenerate curve (repeated vertex), and, with
+  // fracture, a part of the sheet outside the volume (a fracture-tagged
+  // triangle from a box corner to two of the outside points). A reader drops
+  // them all (io::drop_unattached); classify() alone refuses them.
+  bool unattached = false;
   // Snap the random points to the grid of spacing 1/8 (duplicates merged): many
   // coplanar and cospherical points, the degenerate inputs exact predicates
   // must survive. Points may then also lie on the box's faces and edges.
@@ -32,6 +40,7 @@ struct RandomMeshParams {
 };
 
 inline constexpr std::int32_t kRandomFractureTag = 100;
+inline constexpr std::int32_t kRandomUnattachedTag = 900;
 
 // Delaunay tetrahedralisation (CGAL, exact predicates) of the unit box corners
 // plus the random points; all tets positively oriented, region tags as above.
