@@ -51,6 +51,7 @@ class FileSink : public std::streambuf {
     return traits_type::not_eof(c);
   }
   std::streamsize xsputn(const char* s, std::streamsize n) override {
+    if (n <= 0) return 0;  // an empty write may come with s == nullptr (empty vector data())
     const auto size = static_cast<std::size_t>(n);
     if (size > static_cast<std::size_t>(epptr() - pptr())) {
       drain();
