@@ -4,6 +4,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "run_command.h"
+
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -41,15 +43,7 @@ std::string slurp(const fs::path& p) {
   return ss.str();
 }
 
-std::string capture(const std::string& cmd, int& code) {
-  std::string out;
-  FILE* p = popen(cmd.c_str(), "r");
-  std::array<char, 4096> buf;
-  while (std::size_t n = std::fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
-  const int status = pclose(p);
-  code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return out;
-}
+using polydual::testing::capture;
 
 CmdResult run(const std::string& args) {
   static int counter = 0;

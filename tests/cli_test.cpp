@@ -3,6 +3,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "run_command.h"
+
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -16,20 +18,8 @@ namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
 namespace {
-struct CmdResult {
-  int code;
-  std::string out;  // stdout + stderr
-};
-CmdResult run(const std::string& args) {
-  const std::string cmd = std::string(POLYDUAL_BINARY) + " " + args + " 2>&1";
-  CmdResult r{0, {}};
-  FILE* p = popen(cmd.c_str(), "r");
-  std::array<char, 4096> buf;
-  while (std::size_t n = std::fread(buf.data(), 1, buf.size(), p)) r.out.append(buf.data(), n);
-  const int status = pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+using polydual::testing::CmdResult;
+CmdResult run(const std::string& args) { return polydual::testing::run_polydual(args); }
 std::string slurp(const fs::path& p) {
   std::ifstream f(p, std::ios::binary);
   std::stringstream ss;

@@ -26,6 +26,7 @@
 #include "core/interrupt.h"
 #include "io/foam_writer.h"
 #include "io/output_guard.h"
+#include "run_command.h"
 
 namespace polydual {
 namespace {
@@ -590,20 +591,8 @@ TEST(FoamSafety, AnInterruptKeepsThePreviousCase) {
 // ---------------------------------------------------------------------------
 // The command applies the guard before any work (lib/cli/main.cpp)
 
-struct CmdResult {
-  int code;
-  std::string out;
-};
-CmdResult run(const std::string& args) {
-  const std::string cmd = std::string(POLYDUAL_BINARY) + " " + args + " 2>&1";
-  CmdResult r{0, {}};
-  FILE* p = popen(cmd.c_str(), "r");
-  std::array<char, 4096> buf;
-  while (std::size_t n = std::fread(buf.data(), 1, buf.size(), p)) r.out.append(buf.data(), n);
-  const int status = pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+using polydual::testing::CmdResult;
+CmdResult run(const std::string& args) { return polydual::testing::run_polydual(args); }
 
 TEST(CommandSafety, ConvertRefusesToReplaceItsInputOrAUsersDirectory) {
   const fs::path d = scratch("command");

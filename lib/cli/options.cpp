@@ -133,8 +133,6 @@ void check_positional(const CommandSpec& spec, const Settings& s) {
 
 }  // namespace
 
-const std::vector<OptionDef>& option_table() { return kTable; }
-
 const OptionDef& option(const std::string& name) {
   for (const OptionDef& o : kTable)
     if (name == o.name) return o;

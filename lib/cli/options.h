@@ -52,7 +52,6 @@ class UsageFailure : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-const std::vector<OptionDef>& option_table();
 const OptionDef& option(const std::string& name);  // throws std::logic_error if not declared
 
 // Parses argv (after the subcommand) into `defaults`; throws UsageFailure for

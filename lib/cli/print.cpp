@@ -8,8 +8,6 @@
 
 namespace polydual::cli {
 
-std::string json_text(const Json& j) { return j.dump(0); }
-
 void print_warnings(const std::vector<std::string>& warnings, bool quiet) {
   if (quiet) return;
   for (const std::string& w : warnings) std::fprintf(stderr, "polydual: warning: %s\n", w.c_str());

@@ -5,7 +5,6 @@
 
 #include "core/json.h"
 #include "core/progress.h"
-#include "mesh/tet_soup.h"
 #include "pipeline/convert.h"
 
 namespace polydual::cli {
@@ -14,7 +13,6 @@ void print_convert_summary(const Json& summary);
 // The reader's warnings on stderr, one line each (nothing when quiet).
 void print_warnings(const std::vector<std::string>& warnings, bool quiet);
 void print_json(const Json& j);  // one object on stdout
-std::string json_text(const Json& j);  // compact one-line dump of a value
 
 // Shows the progress of long stages on stderr: only once a stage has run for
 // 2 s (POLYDUAL_PROGRESS_DELAY seconds if set), as one live line on a
