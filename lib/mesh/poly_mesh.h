@@ -19,10 +19,24 @@
 namespace polydual {
 
 // FaceKind (lib/core/classification.h): what a dual face lies on.
+// What primal entity a dual point was made from: dim 3 tet, 2 triangle, 1 edge,
+// 0 vertex, with its id; dim -1 for a point made later (split, optimiser).
+struct PointOrigin {
+  std::int8_t dim = -1;
+  std::uint32_t id = 0;
+  friend constexpr bool operator==(PointOrigin, PointOrigin) = default;
+};
+
 struct PolyMesh {
   // Points
   std::vector<Point3> points;
   std::vector<ModelRef> point_class;  // dim 0..3 and model tag of each point
+  // The primal entity each point was made from (the dual builder; kept by the
+  // cleanup, a merged point keeps its representative's): a tet centre, a
+  // triangle centre, an edge midpoint or a vertex, in the ClassifiedTetMesh's
+  // internal numbering. Lets a rebuilt dual (new cuts, lib/split) start from
+  // the positions of an optimised one. Empty: unknown (a mesh read from file).
+  std::vector<PointOrigin> point_origin;
 
   // Faces (CSR loops)
   std::vector<std::uint32_t> face_offsets{0};
@@ -58,6 +72,7 @@ struct PolyMesh {
   PointId add_point(const Point3& p, ModelRef cls) {
     points.push_back(p);
     point_class.push_back(cls);
+    if (!point_origin.empty()) point_origin.push_back(PointOrigin{});
     return PointId(points.size() - 1);
   }
   FaceId add_face(std::span<const PointId> loop, CellId owner, CellId neighbour, FaceKind kind,
