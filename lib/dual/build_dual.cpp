@@ -22,6 +22,7 @@
 #include "core/radix_sort.h"
 #include "dual/central_points.h"
 #include "dual/cleanup.h"
+#include "dual/cut_topology.h"
 #include "dual/sides.h"
 #include "predicates/predicates.h"
 
@@ -77,12 +78,21 @@ struct DualPoints {
   std::vector<char> tri_well_centred;  // by rank among the model-face triangles
 };
 
-// STEP 1-4. Tet centers get PointId == TetId.
-DualPoints make_points(const ClassifiedTetMesh& m, PolyMesh& pm, DualStats& st) {
+// STEP 1-4. Tet centers get PointId == TetId. With cuts (cut_topology.h) the
+// cut triangles get centres among the model-face triangles' (classified in
+// their region), the stop edges midpoints and the vertices it names points.
+// Every point records the primal entity it comes from (point_origin).
+DualPoints make_points(const ClassifiedTetMesh& m, const CutTopology& ct, PolyMesh& pm, DualStats& st) {
   DualPoints d;
   const std::size_t nt = m.num_tets();
   pm.points.resize(nt);
   pm.point_class.resize(nt);
+  pm.point_origin.resize(nt);
+  auto add = [&](const Point3& p, ModelRef cls, std::int8_t dim, std::size_t id) {
+    pm.points.push_back(p);
+    pm.point_class.push_back(cls);
+    pm.point_origin.push_back(PointOrigin{dim, std::uint32_t(id)});
+  };
   d.tet_centre_error.resize(nt);
   // Independent per tet: parallel, and the same result for any thread count.
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nt, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
@@ -91,6 +101,7 @@ DualPoints make_points(const ClassifiedTetMesh& m, PolyMesh& pm, DualStats& st) 
       CentralPoint c = tet_central_point(m.point(v[0]), m.point(v[1]), m.point(v[2]), m.point(v[3]));
       pm.points[t] = c.p;
       pm.point_class[t] = ModelRef{3, m.region(TetId(t))};
+      pm.point_origin[t] = PointOrigin{3, std::uint32_t(t)};
       d.tet_centre_error[t] = c.well_centred ? c.error : -std::numeric_limits<double>::infinity();
     }
   });
@@ -100,43 +111,52 @@ DualPoints make_points(const ClassifiedTetMesh& m, PolyMesh& pm, DualStats& st) 
   d.tri_point.init(m.num_triangles());
   const std::uint32_t first_tri_point = std::uint32_t(pm.num_points());
   for (std::size_t f = 0; f < m.num_triangles(); ++f) {
-    if (!m.on_model_face(TriId(f))) continue;
+    const bool model = m.on_model_face(TriId(f));
+    if (!model && !ct.is_cut(TriId(f))) continue;
     const auto& v = m.triangle(TriId(f));
     CentralPoint c = triangle_central_point(m.point(v[0]), m.point(v[1]), m.point(v[2]));
-    pm.add_point(c.p, m.triangle_class(TriId(f)));
+    add(c.p, model ? m.triangle_class(TriId(f)) : ModelRef{3, m.region(m.triangle_tet(TriId(f), 0))}, 2, f);
     d.tri_point.set(f);
-    d.tri_well_centred.push_back(c.well_centred);
+    // A cut triangle's centre is never merged (cleanup_dual: no merge across cuts).
+    d.tri_well_centred.push_back(model && c.well_centred);
     (c.well_centred ? st.well_centred_triangles : st.clamped_triangles)++;
   }
   d.tri_point.finish(first_tri_point);
   d.edge_point.init(m.num_edges());
   const std::uint32_t first_edge_point = std::uint32_t(pm.num_points());
   for (std::size_t e = 0; e < m.num_edges(); ++e) {
-    if (m.edge_class(EdgeId(e)).dim != 1) continue;
+    if (!(ct.active ? ct.stop[e] != 0 : m.edge_class(EdgeId(e)).dim == 1)) continue;
     const auto& v = m.edge(EdgeId(e));
-    pm.add_point(0.5 * (m.point(v[0]) + m.point(v[1])), m.edge_class(EdgeId(e)));
+    add(0.5 * (m.point(v[0]) + m.point(v[1])), m.edge_class(EdgeId(e)), 1, e);
     d.edge_point.set(e);
   }
   d.edge_point.finish(first_edge_point);
   d.vert_point.assign(m.num_vertices(), PointId::invalid());
   for (std::size_t v = 0; v < m.num_vertices(); ++v)
-    if (m.vertex_class(VertexId(v)).dim == 0)
-      d.vert_point[v] = pm.add_point(m.point(VertexId(v)), m.vertex_class(VertexId(v)));
+    if (ct.active ? ct.vertex_point[v] != 0 : m.vertex_class(VertexId(v)).dim == 0) {
+      d.vert_point[v] = PointId(pm.num_points());
+      add(m.point(VertexId(v)), m.vertex_class(VertexId(v)), 0, v);
+    }
   return d;
 }
 
 // STEP 5-6: faces of primal edges, one per fan.
 // The faces with a model point (triangle centre, midpoint) are listed in
 // model_faces: the cleanup walks only their loops for short edges.
-void make_edge_faces(const ClassifiedTetMesh& m, const VertexSides& sides, const DualPoints& d,
-                     PolyMesh& pm, std::vector<std::uint32_t>& model_faces) {
+// With cuts, the ring of e = (a, b) is cut at the triangles of M ∪ cut(a) ∪
+// cut(b) (ring_position), and a triangle cut only by its third vertex keeps
+// the ring whole but puts its centre between its two tets (rule I of
+// proofs/dual_cuts.md: the cells of a and b stay closed).
+void make_edge_faces(const ClassifiedTetMesh& m, const CutTopology& ct, const VertexSides& sides,
+                     const DualPoints& d, PolyMesh& pm, std::vector<std::uint32_t>& model_faces) {
   std::vector<TetId> ring;
   std::vector<TriId> tris;
   std::vector<std::size_t> cuts;
+  std::vector<char> inserted;  // per ring triangle, with cuts only
   std::vector<PointId> loop;
   for (std::size_t e = 0; e < m.num_edges(); ++e) {
     const EdgeId eid(e);
-    if (m.edge_class(eid).dim == 3) {
+    if (!ct.active && m.edge_class(eid).dim == 3) {
       // Classified in a region: no model-face triangle around it (classify()),
       // so the ring is closed and uncut: one face of the tet centres.
       const auto [a, b] = m.edge(eid);
@@ -150,19 +170,37 @@ void make_edge_faces(const ClassifiedTetMesh& m, const VertexSides& sides, const
     m.edge_ring(eid, ring, tris, closed);
     const std::size_t n = ring.size();
     cuts.clear();
-    for (std::size_t k = 0; k < n; ++k)
-      if (m.on_model_face(tris[k])) cuts.push_back(k);
+    if (!ct.active) {
+      for (std::size_t k = 0; k < n; ++k)
+        if (m.on_model_face(tris[k])) cuts.push_back(k);
+    } else {
+      inserted.assign(n + 1, 0);
+      for (std::size_t k = 0; k < n; ++k) {
+        if (ring_position(m, ct, tris[k], a, b)) cuts.push_back(k);
+        else inserted[k] = char(ct.is_cut(tris[k]));
+      }
+      if (closed) inserted[n] = inserted[0];
+    }
     if (!closed) cuts.push_back(n);  // tris[n] is the closing boundary triangle
     // The fan of tets ring[s .. t) (indices mod n on a closed ring), between the
-    // model-face triangles tris[s] and tris[t] when `bounded`. tris has n + 1
-    // entries and tris[n] == tris[0] on a closed ring, so t <= 2n - 1 maps to
-    // tris[t - n] past the end.
+    // model-face (or cut) triangles tris[s] and tris[t] when `bounded`. tris has
+    // n + 1 entries and tris[n] == tris[0] on a closed ring, so t <= 2n - 1 maps
+    // to tris[t - n] past the end.
     auto emit = [&](std::size_t s, std::size_t t, bool bounded) {
       loop.clear();
       const TriId start = tris[s], end = tris[t > n ? t - n : t];
       if (bounded) loop.push_back(d.tri_point[start.idx]);
-      for (std::size_t k = s; k < std::min(t, n); ++k) loop.push_back(PointId(ring[k].idx));
-      for (std::size_t k = n; k < t; ++k) loop.push_back(PointId(ring[k - n].idx));  // wrapped
+      if (!ct.active) {
+        for (std::size_t k = s; k < std::min(t, n); ++k) loop.push_back(PointId(ring[k].idx));
+        for (std::size_t k = n; k < t; ++k) loop.push_back(PointId(ring[k - n].idx));  // wrapped
+      } else {
+        for (std::size_t k = s; k < t; ++k) {
+          const std::size_t kk = k >= n ? k - n : k;
+          if (k > s && inserted[kk]) loop.push_back(d.tri_point[tris[kk].idx]);
+          loop.push_back(PointId(ring[kk].idx));
+        }
+        if (!bounded && inserted[0]) loop.push_back(d.tri_point[tris[0].idx]);  // between ring[n-1] and ring[0]
+      }
       // One cut on a closed ring (start == end, a fracture tip edge): the fan
       // goes all the way round and closes on the start triangle's centre.
       if (bounded && end != start) {
@@ -185,32 +223,42 @@ void make_edge_faces(const ClassifiedTetMesh& m, const VertexSides& sides, const
   }
 }
 
-// Vertex -> model-face triangles (CSR, triangles increasing per vertex).
+// Vertex v -> the triangles of M ∪ cut(v) through v (CSR, triangles
+// increasing per vertex).
 struct VertexTriangles {
   std::vector<std::uint32_t> off;
   std::vector<TriId> tri;
   std::span<const TriId> of(std::size_t v) const { return {tri.data() + off[v], tri.data() + off[v + 1]}; }
 };
 
-VertexTriangles vertex_model_triangles(const ClassifiedTetMesh& m) {
+VertexTriangles vertex_cap_triangles(const ClassifiedTetMesh& m, const CutTopology& ct) {
   const std::size_t nv = m.num_vertices(), nf = m.num_triangles();
   VertexTriangles vt;
   vt.off.assign(nv + 1, 0);
   for (std::size_t f = 0; f < nf; ++f)
     if (m.on_model_face(TriId(f)))
       for (VertexId v : m.triangle(TriId(f))) ++vt.off[v.idx + 1];
+  if (ct.active)
+    for (std::size_t v = 0; v < nv; ++v) vt.off[v + 1] += std::uint32_t(ct.cuts->of(VertexId(v)).size());
   for (std::size_t v = 0; v < nv; ++v) vt.off[v + 1] += vt.off[v];
   vt.tri.resize(vt.off[nv]);
   std::vector<std::uint32_t> fill(vt.off.begin(), vt.off.end() - 1);
   for (std::size_t f = 0; f < nf; ++f)
     if (m.on_model_face(TriId(f)))
       for (VertexId v : m.triangle(TriId(f))) vt.tri[fill[v.idx]++] = TriId(f);
+  if (ct.active)
+    for (std::size_t v = 0; v < nv; ++v) {
+      for (TriId f : ct.cuts->of(VertexId(v))) vt.tri[fill[v]++] = f;
+      std::sort(vt.tri.begin() + vt.off[v], vt.tri.begin() + vt.off[v + 1],
+                [](TriId x, TriId y) { return x.idx < y.idx; });
+    }
   return vt;
 }
 
-// The runs of model-face triangles around one vertex v (STEP 7). Each
+// The runs of cap triangles (M ∪ cut(v)) around one vertex v (STEP 7). Each
 // triangle k of L is seen as (v, A[k], B[k]) in its stored orientation, with
-// whether the edges (v, A[k]), (v, B[k]) are model edges (a run stops there).
+// whether the edges (v, A[k]), (v, B[k]) are stop edges (model edges, and with
+// cuts CutTopology::stop: a run stops there).
 // The buffers are reused from vertex to vertex.
 struct CapRuns {
   struct Oriented { std::uint32_t k; VertexId p, q; };  // triangle L[k] seen as (v, p, q)
@@ -219,7 +267,7 @@ struct CapRuns {
   std::vector<Oriented> seq;  // the current run, in walk order
   std::uint32_t n = 0;
 
-  void load(const ClassifiedTetMesh& m, VertexId v, std::span<const TriId> L) {
+  void load(const ClassifiedTetMesh& m, const CutTopology& ct, VertexId v, std::span<const TriId> L) {
     n = std::uint32_t(L.size());
     A.resize(n);
     B.resize(n);
@@ -231,12 +279,14 @@ struct CapRuns {
       const int i = t[0] == v ? 0 : (t[1] == v ? 1 : 2);
       A[k] = t[(i + 1) % 3];
       B[k] = t[(i + 2) % 3];
-      stopA[k] = m.edge_class(m.triangle_edge(L[k], v, A[k])).dim == 1;
-      stopB[k] = m.edge_class(m.triangle_edge(L[k], v, B[k])).dim == 1;
+      const EdgeId ea = m.triangle_edge(L[k], v, A[k]), eb = m.triangle_edge(L[k], v, B[k]);
+      stopA[k] = ct.active ? ct.stop[ea.idx] : m.edge_class(ea).dim == 1;
+      stopB[k] = ct.active ? ct.stop[eb.idx] : m.edge_class(eb).dim == 1;
     }
   }
-  // The run triangle other than k sharing edge (v, w), or -1 at a model edge
-  // (such an edge has exactly two model-face triangles, of one model face).
+  // The run triangle other than k sharing edge (v, w), or -1 at a stop edge
+  // (any other edge has exactly two run triangles, of one model face or both
+  // cut: proofs/dual_cuts.md).
   // Found without branches: L is short, and which j matches is a coin toss.
   [[gnu::always_inline]] std::int64_t across(std::uint32_t k, VertexId w) const {
     if (w == A[k] ? stopA[k] : stopB[k]) return -1;
@@ -296,19 +346,20 @@ void cap_loop(const ClassifiedTetMesh& m, const DualPoints& d, VertexId v, std::
   }
 }
 
-// STEP 7: capping faces. Around each vertex v, walk the model-face triangles
-// containing v through edges (v,w) that are not model edges (such an edge has
-// exactly two model-face triangles, of one model face): each walk is a run.
-void make_caps(const ClassifiedTetMesh& m, const VertexSides& sides, const DualPoints& d, PolyMesh& pm,
-               DualStats& st) {
-  const VertexTriangles vt = vertex_model_triangles(m);
+// STEP 7: capping faces. Around each vertex v, walk the triangles of M ∪
+// cut(v) containing v through edges (v,w) that are not stop edges (such an
+// edge has exactly two of them, of one model face or both cut): each walk is
+// a run. A cap on cut triangles is an interior face between two sides of v.
+void make_caps(const ClassifiedTetMesh& m, const CutTopology& ct, const VertexSides& sides, const DualPoints& d,
+               PolyMesh& pm, DualStats& st) {
+  const VertexTriangles vt = vertex_cap_triangles(m, ct);
   CapRuns runs;
   std::vector<PointId> loop;
   for (std::size_t vi = 0; vi < m.num_vertices(); ++vi) {
     const VertexId v(vi);
     const std::span<const TriId> L = vt.of(vi);
     if (L.empty()) continue;
-    runs.load(m, v, L);
+    runs.load(m, ct, v, L);
     for (std::uint32_t i0 = 0; i0 < runs.n; ++i0) {
       if (runs.visited[i0]) continue;
       const bool closed = runs.walk(i0);
@@ -320,9 +371,13 @@ void make_caps(const ClassifiedTetMesh& m, const VertexSides& sides, const DualP
       const TetId t0 = m.triangle_tet(f0, 0), t1 = m.triangle_tet(f0, 1);
       const CellId owner = sides.cell(t0, v);
       const CellId neigh = t1.valid() ? sides.cell(t1, v) : CellId::invalid();
-      const std::int32_t tag = m.triangle_class(f0).tag;
       if (owner == neigh) ++st.slit_faces;
-      pm.add_face(loop, owner, neigh, m.model().face_kind(tag), tag);
+      if (m.on_model_face(f0)) {
+        const std::int32_t tag = m.triangle_class(f0).tag;
+        pm.add_face(loop, owner, neigh, m.model().face_kind(tag), tag);
+      } else {
+        pm.add_face(loop, owner, neigh, FaceKind::Interior, 0);
+      }
     }
   }
 }
@@ -345,7 +400,11 @@ struct PointPairs {
 // insphere test (which decides).
 constexpr double kBoundSlack = 1.001;
 
-PointPairs point_pairs(const ClassifiedTetMesh& m, const DualPoints& d, const PolyMesh& pm, double collapse_length) {
+// Tet centres across a cut triangle are never paired: the dual edge between
+// them may not exist (the triangle's centre sits between them, or the cut
+// separates them).
+PointPairs point_pairs(const ClassifiedTetMesh& m, const CutTopology& ct, const DualPoints& d, const PolyMesh& pm,
+                       double collapse_length) {
   PointPairs out;
   auto& pairs = out.exact;
   const double lim2 = collapse_length * collapse_length;
@@ -375,7 +434,8 @@ PointPairs point_pairs(const ClassifiedTetMesh& m, const DualPoints& d, const Po
       const Vec3 dc = c1 - c0;
       // Inexact: a length threshold is a tolerance, not a sign.
       if (dot(dc, dc) < lim2) [[unlikely]] {
-        if (!m.on_model_face(m.tet_triangle(t0, i))) out.short_.emplace_back(PointId(t0.idx), PointId(t1.idx));
+        const TriId f = m.tet_triangle(t0, i);
+        if (!m.on_model_face(f) && !ct.is_cut(f)) out.short_.emplace_back(PointId(t0.idx), PointId(t1.idx));
       }
       // Cospherical (sharing a face) iff the exact circumcentres coincide. If
       // the rounded centres differ by more than their error bounds (L9c), they
@@ -383,7 +443,7 @@ PointPairs point_pairs(const ClassifiedTetMesh& m, const DualPoints& d, const Po
       // clamped centre's bound is -inf: no tolerance admits it.
       const double tol = kBoundSlack * (d.tet_centre_error[t0.idx] + d.tet_centre_error[t1.idx]);
       if (std::fabs(dc.x) > tol || std::fabs(dc.y) > tol || std::fabs(dc.z) > tol) continue;
-      if (m.on_model_face(m.tet_triangle(t0, i))) continue;
+      if (m.on_model_face(m.tet_triangle(t0, i)) || ct.is_cut(m.tet_triangle(t0, i))) continue;
       const auto& a = m.tet(t0);
       const VertexId far = m.tet(t1)[m.tet_neighbor_face(t0, i)];
       if (insphere(m.point(a[0]), m.point(a[1]), m.point(a[2]), m.point(a[3]), m.point(far)) == Sign::Zero)
@@ -433,14 +493,18 @@ double mean_edge_length(const ClassifiedTetMesh& m) {
 // their point lists are bounded by the edge rings (sum of ring sizes = 6 per
 // tet) plus the model-face triangle centres, midpoints and model vertices
 // they add (each triangle centre in <= 6 fan faces and 3 caps).
-void reserve_dual(const ClassifiedTetMesh& m, PolyMesh& pm) {
+// With cuts the points are still counted exactly (cut triangles, stop edges,
+// vertex points); faces may then outgrow the bound (more arcs per ring).
+void reserve_dual(const ClassifiedTetMesh& m, const CutTopology& ct, PolyMesh& pm) {
   std::size_t nmf = 0, nme = 0, nmv = 0;
-  for (std::size_t f = 0; f < m.num_triangles(); ++f) nmf += m.on_model_face(TriId(f));
-  for (std::size_t e = 0; e < m.num_edges(); ++e) nme += m.edge_class(EdgeId(e)).dim == 1;
-  for (std::size_t v = 0; v < m.num_vertices(); ++v) nmv += m.vertex_class(VertexId(v)).dim == 0;
+  for (std::size_t f = 0; f < m.num_triangles(); ++f) nmf += m.on_model_face(TriId(f)) || ct.is_cut(TriId(f));
+  for (std::size_t e = 0; e < m.num_edges(); ++e) nme += ct.active ? ct.stop[e] != 0 : m.edge_class(EdgeId(e)).dim == 1;
+  for (std::size_t v = 0; v < m.num_vertices(); ++v)
+    nmv += ct.active ? ct.vertex_point[v] != 0 : m.vertex_class(VertexId(v)).dim == 0;
   const std::size_t np = m.num_tets() + nmf + nme + nmv;
   pm.points.reserve(np);
   pm.point_class.reserve(np);
+  pm.point_origin.reserve(np);
   const std::size_t nf = m.num_edges() + 2 * nmf + nme;
   pm.face_offsets.reserve(nf + 1);
   pm.face_owner.reserve(nf);
@@ -485,15 +549,17 @@ Json DualStats::to_json() const {
   return j;
 }
 
-DualDraft build_dual_draft(const ClassifiedTetMesh& m, const DualParams& params, DualStats* stats) {
+DualDraft build_dual_draft(const ClassifiedTetMesh& m, const DualParams& params, DualStats* stats,
+                           const VertexCuts* cuts) {
   params.validate();
   DualStats local;
   DualStats& st = stats ? *stats : local;
   DualDraft draft;
   PolyMesh& pm = draft.mesh;
   auto t0 = Clock::now();
-  reserve_dual(m, pm);
-  DualPoints d = make_points(m, pm, st);
+  const CutTopology ct = cut_topology(m, cuts);
+  reserve_dual(m, ct, pm);
+  DualPoints d = make_points(m, ct, pm, st);
   st.seconds_points = since(t0);
 
   // The hints need only the points: find them now and free the centres'
@@ -501,7 +567,7 @@ DualDraft build_dual_draft(const ClassifiedTetMesh& m, const DualParams& params,
   t0 = Clock::now();
   if (params.cleanup) {
     draft.collapse_length = params.collapse_tolerance * mean_edge_length(m);
-    PointPairs pairs = point_pairs(m, d, pm, draft.collapse_length);
+    PointPairs pairs = point_pairs(m, ct, d, pm, draft.collapse_length);
     draft.exact_pairs = std::move(pairs.exact);
     draft.short_pairs = std::move(pairs.short_);
   }
@@ -510,13 +576,13 @@ DualDraft build_dual_draft(const ClassifiedTetMesh& m, const DualParams& params,
   st.seconds_hints = since(t0);
 
   t0 = Clock::now();
-  VertexSides sides = compute_sides(m);
+  VertexSides sides = compute_sides(m, ct.active ? cuts : nullptr);
   st.seconds_sides = since(t0);
   t0 = Clock::now();
   std::vector<std::uint32_t> model_faces;
-  make_edge_faces(m, sides, d, pm, model_faces);
+  make_edge_faces(m, ct, sides, d, pm, model_faces);
   const std::size_t first_cap = pm.num_faces();
-  make_caps(m, sides, d, pm, st);  // every cap has model points
+  make_caps(m, ct, sides, d, pm, st);  // every cap has model points
   for (std::size_t f = first_cap; f < pm.num_faces(); ++f) model_faces.push_back(std::uint32_t(f));
   if (params.cleanup) draft.scan_faces = std::move(model_faces);
   st.seconds_faces = since(t0);
@@ -550,11 +616,12 @@ PolyMesh assemble_cells(DualDraft&& draft) {
   return pm;
 }
 
-PolyMesh build_dual(const ClassifiedTetMesh& m, const DualParams& params, DualStats* stats) {
+PolyMesh build_dual(const ClassifiedTetMesh& m, const DualParams& params, DualStats* stats,
+                    const VertexCuts* cuts) {
   DualStats local;
   DualStats& st = stats ? *stats : local;
   st = DualStats{};
-  DualDraft draft = build_dual_draft(m, params, &st);
+  DualDraft draft = build_dual_draft(m, params, &st, cuts);
   // Without hints (params.cleanup off) the cleanup only compacts: it drops
   // faces under 3 distinct points and points no face uses.
   const CleanupStats cs = cleanup_dual(draft);

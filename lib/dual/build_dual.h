@@ -13,6 +13,7 @@
 #include "core/json.h"
 #include "dual/cleanup.h"
 #include "dual/dual_draft.h"
+#include "dual/vertex_cuts.h"
 #include "mesh/classified_tet_mesh.h"
 #include "mesh/poly_mesh.h"
 
@@ -56,8 +57,18 @@ struct DualStats {
 // these steps (counts of well-centred/clamped simplices, slit faces, seconds
 // of points, sides, faces and hints); leaves the cleanup's and cells' alone.
 // Throws UsageError if params do not validate().
+//
+// cuts (dual/vertex_cuts.h, design §8; null or empty: none, and the result
+// is the same as without the argument): each vertex v gets one cell per side
+// of its star cut by the model faces and cut(v); cut triangles get centres
+// (classified in their region), the edges where the cut sets of the two ends
+// disagree get midpoints, and the faces of the neighbouring cells pass
+// through them so every cell stays closed (the rules: proofs/dual_cuts.md).
+// Bad cut sets (not through their vertex, on a model face, not increasing,
+// sizes wrong) throw InputError naming the mesh's source and the vertex.
+// Every point's primal entity is in mesh.point_origin (internal numbering).
 DualDraft build_dual_draft(const ClassifiedTetMesh& mesh, const DualParams& params = {},
-                           DualStats* stats = nullptr);
+                           DualStats* stats = nullptr, const VertexCuts* cuts = nullptr);
 
 // Step 8: the cells' half-face lists (face order within a cell), from the face
 // owners and neighbours. Consumes the draft (hints, if any, are ignored).
@@ -66,6 +77,6 @@ PolyMesh assemble_cells(DualDraft&& draft);
 // build_dual_draft, then cleanup_dual (when params.cleanup), then
 // assemble_cells; *stats gets every stage's figures.
 PolyMesh build_dual(const ClassifiedTetMesh& mesh, const DualParams& params = {},
-                    DualStats* stats = nullptr);
+                    DualStats* stats = nullptr, const VertexCuts* cuts = nullptr);
 
 }  // namespace polydual

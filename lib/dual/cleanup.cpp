@@ -98,11 +98,18 @@ std::size_t collapse_short_edges(const PolyMesh& pm, const DualDraft& d, UnionFi
   std::size_t collapsed = 0;
   if (!(d.collapse_length > 0)) return 0;
   const double lim2 = d.collapse_length * d.collapse_length;
+  // Only points classified on the entity they come from collapse: a tet
+  // centre, a model-face triangle centre, a model-edge midpoint, a model
+  // vertex. The points that cuts add (cut triangle centres, midpoints of
+  // other edges, other vertices) are classified on an entity of higher
+  // dimension and keep the cut surface where the builder put it.
+  const auto& origin = pm.point_origin;
+  auto own = [&](std::uint32_t p) { return origin.empty() || origin[p].dim == pm.point_class[p].dim; };
   // The length test comes first: it is almost always false, and the classes
   // are then never loaded.
   auto check = [&](std::uint32_t rp, std::uint32_t rq) {
-    if (norm2(pm.points[rp] - pm.points[rq]) < lim2 && rp != rq && pm.point_class[rp] == pm.point_class[rq])
-        [[unlikely]] {
+    if (norm2(pm.points[rp] - pm.points[rq]) < lim2 && rp != rq && pm.point_class[rp] == pm.point_class[rq] &&
+        own(rp) && own(rq)) [[unlikely]] {
       uf.unite(rp, rq);
       ++collapsed;
       return uf.find(rq);
@@ -172,13 +179,16 @@ std::size_t drop_unused_points(PolyMesh& pm) {
     if (!used[p]) continue;
     pm.points[k] = pm.points[p];
     pm.point_class[k] = pm.point_class[p];
+    if (!pm.point_origin.empty()) pm.point_origin[k] = pm.point_origin[p];
     ++k;
   }
   pm.points.resize(k);
   pm.point_class.resize(k);
+  if (!pm.point_origin.empty()) pm.point_origin.resize(k);
   for (PointId& p : pm.face_points) p = PointId(new_id[p.idx]);
   pm.points.shrink_to_fit();
   pm.point_class.shrink_to_fit();
+  pm.point_origin.shrink_to_fit();
   return np - k;
 }
 

@@ -24,7 +24,10 @@ struct CleanupStats {
 // The collapse length and the pairs to look at are the draft's
 // (DualDraft::collapse_length, exact_pairs, short_pairs, scan_faces): the
 // builder found them for its DualParams. Points merged into one keep the
-// coordinates and classification of the smallest id; points and faces keep
+// coordinates, classification and origin (PolyMesh::point_origin, kept
+// aligned with the points when present) of the smallest id; a point whose
+// classification is of another dimension than its origin (what cuts add,
+// build_dual.h) is never collapsed; points and faces keep
 // their relative order. Works in place, without a second mesh (the cleanup
 // runs at the memory peak of the dual construction). The hints are consumed
 // (left empty).

@@ -4,7 +4,7 @@
 
 namespace polydual {
 
-VertexSides compute_sides(const ClassifiedTetMesh& m) {
+VertexSides compute_sides(const ClassifiedTetMesh& m, const VertexCuts* cuts) {
   const std::size_t nv = m.num_vertices();
   VertexSides out;
   out.mesh = &m;
@@ -25,8 +25,10 @@ VertexSides compute_sides(const ClassifiedTetMesh& m) {
     const VertexId v(vi);
     const std::span<const TetId> star = m.vertex_tets(v);
     out.first_cell[vi] = std::uint32_t(out.num_cells);
-    // A vertex on no model face (classified in a region) has a single side.
-    if (m.vertex_class(v).dim == 3) {
+    const std::span<const TriId> cut = cuts ? cuts->of(v) : std::span<const TriId>{};
+    // A vertex on no model face (classified in a region) and without cuts
+    // has a single side.
+    if (m.vertex_class(v).dim == 3 && cut.empty()) {
       ++out.num_cells;
       out.cell_vertex.push_back(v);
       out.cell_material.push_back(m.region(star.front()));
@@ -36,7 +38,7 @@ VertexSides compute_sides(const ClassifiedTetMesh& m) {
     parent.resize(n);
     for (std::uint32_t k = 0; k < n; ++k) parent[k] = k;
     // Joins with a later neighbour across a triangle that is not on a model
-    // face. Which faces join is a coin toss along a boundary: the pairs are
+    // face nor in v's cuts. Which faces join is a coin toss along a boundary: the pairs are
     // gathered without branches (written always, counted by the flag), then
     // united.
     joins.resize(3 * std::size_t(n));
@@ -48,7 +50,9 @@ VertexSides compute_sides(const ClassifiedTetMesh& m) {
         const int j = (iv + 1 + q) & 3;  // the three faces through v
         const TetId s = m.tet_neighbor(t, j);
         joins[nj] = {k, s};
-        nj += unsigned(s.valid()) & unsigned(s.idx > t.idx) & unsigned(!m.on_model_face(m.tet_triangle(t, j)));
+        const TriId f = m.tet_triangle(t, j);
+        const unsigned uncut = cut.empty() ? 1u : unsigned(!cuts->cuts(v, f));  // predictable: a vertex either way
+        nj += unsigned(s.valid()) & unsigned(s.idx > t.idx) & unsigned(!m.on_model_face(f)) & uncut;
       }
     }
     for (std::size_t q = 0; q < nj; ++q) {

@@ -1,10 +1,12 @@
 // Sides of primal vertices (design §1): the tets around v connected through
-// triangles not on a model face. One dual cell per side.
+// triangles on no model face and not in v's cut set (dual/vertex_cuts.h,
+// design §8). One dual cell per side.
 #pragma once
 #include <algorithm>
 #include <vector>
 
 #include "core/handles.h"
+#include "dual/vertex_cuts.h"
 #include "mesh/classified_tet_mesh.h"
 
 namespace polydual {
@@ -32,7 +34,8 @@ struct VertexSides {
 };
 
 // Cells are numbered by primal vertex, then by the first tet (in star order)
-// of each side: deterministic.
-VertexSides compute_sides(const ClassifiedTetMesh& mesh);
+// of each side: deterministic. cuts (null: none) must have been checked
+// (cut_topology()).
+VertexSides compute_sides(const ClassifiedTetMesh& mesh, const VertexCuts* cuts = nullptr);
 
 }  // namespace polydual

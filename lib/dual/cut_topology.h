@@ -1,0 +1,46 @@
+// What virtual cut surfaces (dual/vertex_cuts.h, design §8) change in
+// Algorithm 1, decided once per mesh before the dual is built:
+//  - which triangles are cut by which of their vertices (they get a centre);
+//  - which edges are stop edges (they get a midpoint, every fan face of the
+//    edge passes through it and the caps at both ends stop there);
+//  - which vertices get a point although they are no model vertex.
+// The rules and why they close every cell: proofs/dual_cuts.md.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "dual/vertex_cuts.h"
+#include "mesh/classified_tet_mesh.h"
+
+namespace polydual {
+
+struct CutTopology {
+  // False: no cuts (null or empty); every other member is then empty and
+  // Algorithm 1 runs exactly as without cuts.
+  bool active = false;
+  const VertexCuts* cuts = nullptr;
+  // Per triangle: bit i set iff triangle(f)[i] cuts f (f is in its cut set).
+  std::vector<std::uint8_t> tri_mask;
+  // Per edge: stop(e) (model edge, or the cut sets of its ends disagree on
+  // its ring: proofs/dual_cuts.md, rule S).
+  std::vector<char> stop;
+  // Per vertex: v gets a dual point (model vertex, or >= 3 stop edges on
+  // which a cap of v ends).
+  std::vector<char> vertex_point;
+
+  bool is_cut(TriId f) const { return active && tri_mask[f.idx] != 0; }
+  bool cut_by(TriId f, VertexId v) const { return active && cuts->cuts(v, f); }
+};
+
+// Checks the cut sets against the mesh (sizes, increasing ids, each triangle
+// through its vertex and on no model face): InputError naming the mesh's
+// source, the vertex (input numbering) and the triangle otherwise.
+CutTopology cut_topology(const ClassifiedTetMesh& mesh, const VertexCuts* cuts);
+
+// A triangle of edge e = (a, b)'s ring cuts the ring (a position: the fan
+// faces of e end there) iff it is on a model face or in cut(a) or cut(b).
+inline bool ring_position(const ClassifiedTetMesh& m, const CutTopology& ct, TriId f, VertexId a, VertexId b) {
+  return m.on_model_face(f) || ct.cut_by(f, a) || ct.cut_by(f, b);
+}
+
+}  // namespace polydual
