@@ -1,6 +1,7 @@
 #include "dual/sides.h"
 
 #include <algorithm>
+#include <type_traits>
 
 namespace polydual {
 
@@ -43,18 +44,24 @@ VertexSides compute_sides(const ClassifiedTetMesh& m, const VertexCuts* cuts) {
     // united.
     joins.resize(3 * std::size_t(n));
     std::size_t nj = 0;
-    for (std::uint32_t k = 0; k < n; ++k) {
-      const TetId t = star[k];
-      const int iv = m.local_index(t, v);
-      for (int q = 0; q < 3; ++q) {
-        const int j = (iv + 1 + q) & 3;  // the three faces through v
-        const TetId s = m.tet_neighbor(t, j);
-        joins[nj] = {k, s};
-        const TriId f = m.tet_triangle(t, j);
-        const unsigned uncut = cut.empty() ? 1u : unsigned(!cuts->cuts(v, f));  // predictable: a vertex either way
-        nj += unsigned(s.valid()) & unsigned(s.idx > t.idx) & unsigned(!m.on_model_face(f)) & uncut;
+    auto gather = [&](auto with_cuts) {
+      for (std::uint32_t k = 0; k < n; ++k) {
+        const TetId t = star[k];
+        const int iv = m.local_index(t, v);
+        for (int q = 0; q < 3; ++q) {
+          const int j = (iv + 1 + q) & 3;  // the three faces through v
+          const TetId s = m.tet_neighbor(t, j);
+          joins[nj] = {k, s};
+          const TriId f = m.tet_triangle(t, j);
+          unsigned join = unsigned(s.valid()) & unsigned(s.idx > t.idx) & unsigned(!m.on_model_face(f));
+          if constexpr (decltype(with_cuts)::value) join &= unsigned(!cuts->cuts(v, f));
+          nj += join;
+        }
       }
-    }
+    };
+    // A vertex without cuts runs the loop without the cut test.
+    if (cut.empty()) gather(std::false_type{});
+    else gather(std::true_type{});
     for (std::size_t q = 0; q < nj; ++q) {
       const std::uint32_t a = find(joins[q].k), b = find(m.star_rank(v, joins[q].s));
       if (a != b) parent[std::max(a, b)] = std::min(a, b);
