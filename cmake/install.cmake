@@ -1,6 +1,7 @@
 # Install rules and the CMake package of polydual (included by the top-level
 # CMakeLists.txt after lib/). `cmake --install build --prefix P` gives
 #   P/bin/polydual                                the command
+#   P/lib/polydual/polydual-gmsh.so               its Gmsh module (generate, demo; dlopen)
 #   P/lib/libpolydual_core.a                      polydual::polydual
 #   P/lib/libpolydual_generate.a                  polydual::generate (component "generate", needs libgmsh)
 #   P/include/polydual/<core|mesh|io|...>/*.h     lib/ without cli/ and alloc/
@@ -13,6 +14,8 @@ include(CMakePackageConfigHelpers)
 set(POLYDUAL_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/polydual)
 
 install(TARGETS polydual RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+# Where the command looks for it (lib/generate/gmsh_module_loader.cpp).
+install(TARGETS polydual_gmsh LIBRARY DESTINATION ${POLYDUAL_GMSH_MODULE_DIR})
 install(TARGETS polydual_core EXPORT polydual-targets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(TARGETS polydual_generate EXPORT polydual-generate-targets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 # lib/cli (the command) and lib/alloc (a replacement of the global operator

@@ -359,7 +359,9 @@ TEST(CliOptions, VtuEncodingAndCompression) {
     const char* file;
     const char* marker;
   };
-  const Case cases[] = {{"", "e_b64.vtu", "format=\"binary\""},
+  // The default is appended raw binary.
+  const Case cases[] = {{"", "e_default.vtu", "<AppendedData encoding=\"raw\">"},
+                        {"--vtu-encoding base64", "e_b64.vtu", "format=\"binary\""},
                         {"--vtu-encoding raw", "e_raw.vtu", "<AppendedData encoding=\"raw\">"},
                         {"--vtu-encoding ascii", "e_ascii.vtu", "format=\"ascii\""},
                         {"--zlib 6", "e_zlib.vtu", "compressor=\"vtkZLibDataCompressor\""}};
@@ -374,6 +376,7 @@ TEST(CliOptions, VtuEncodingAndCompression) {
     EXPECT_EQ(jq(chk.out, "d['cells']"), cells) << k.opts;
   }
   EXPECT_LT(fs::file_size(d / "e_zlib.vtu"), fs::file_size(d / "e_b64.vtu"));
+  EXPECT_EQ(slurp(d / "e_default.vtu"), slurp(d / "e_raw.vtu"));
   EXPECT_EQ(run("convert " + in + " -o " + (d / "e_bad.vtu").string() + " --zlib 6 --vtu-encoding ascii").code, 2);
 }
 

@@ -37,56 +37,94 @@ void put_number(std::string& s, T v) {
   s.append(buf.data(), r.ptr);
 }
 
-// One DataArray to write: its XML attributes, its values as bytes (binary
-// modes) and as text (ascii).
+// Receives an array's values in file order. With a stream (appended raw
+// output) the bytes go to it through a fixed buffer, so no array is ever held
+// whole; without one they are collected for encoding (base64, zlib, ascii),
+// one array at a time.
+class ByteSink {
+ public:
+  // `capacity`: the bytes to collect, when known (no stream).
+  explicit ByteSink(std::ostream* os, std::size_t capacity = 0) : os_(os) {
+    buf_.reserve(os_ ? kChunk : capacity);
+  }
+  template <class T>
+  void put(T v) {
+    append(&v, sizeof v);
+  }
+  void append(const void* p, std::size_t n) {
+    if (os_ && buf_.size() + n > kChunk) {
+      flush();
+      if (n >= kChunk) {  // a whole vector: straight to the stream
+        os_->write(static_cast<const char*>(p), static_cast<std::streamsize>(n));
+        return;
+      }
+    }
+    buf_.append(static_cast<const char*>(p), n);
+  }
+  void flush() {
+    if (!os_) return;
+    os_->write(buf_.data(), static_cast<std::streamsize>(buf_.size()));
+    buf_.clear();
+  }
+  std::string take() { return std::move(buf_); }
+
+ private:
+  static constexpr std::size_t kChunk = std::size_t{1} << 20;
+  std::ostream* os_;
+  std::string buf_;
+};
+
+// One DataArray to write: its XML attributes, its size, the producer of its
+// values (called once per output pass) and their ascii form.
 struct OutArray {
   const char* type;
   std::string name;
   int components;
-  bool field_data;  // FieldData arrays declare NumberOfTuples
-  std::size_t count;
-  std::string_view bytes;
-  std::function<void(std::ostream&)> ascii;
+  bool field_data;     // FieldData arrays declare NumberOfTuples
+  std::size_t count;   // values
+  std::size_t nbytes;  // count * value size
+  std::function<void(ByteSink&)> produce;
+  std::function<void(std::ostream&, std::string_view)> ascii;  // from the bytes
 };
 
 template <class T>
-OutArray out_array(const char* type, std::string name, int components, const std::vector<T>& v,
-                   bool field_data = false) {
-  OutArray a{type, std::move(name), components, field_data, v.size(),
-             {reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T)}, {}};
-  a.ascii = [&v, components](std::ostream& os) {
+OutArray out_array(const char* type, std::string name, int components, std::size_t count,
+                   std::function<void(ByteSink&)> produce, bool field_data = false) {
+  OutArray a{type, std::move(name), components, field_data, count, count * sizeof(T), std::move(produce), {}};
+  a.ascii = [components](std::ostream& os, std::string_view bytes) {
+    const std::size_t n = bytes.size() / sizeof(T);
     const std::size_t per_line = components > 1 ? static_cast<std::size_t>(components) : 12;
     std::string line;
-    for (std::size_t i = 0; i < v.size(); ++i) {
+    for (std::size_t i = 0; i < n; ++i) {
+      T v;
+      std::memcpy(&v, bytes.data() + i * sizeof(T), sizeof(T));
       if (i % per_line == 0) line = "          ";
       else line += ' ';
-      put_number(line, v[i]);
-      if (i % per_line == per_line - 1 || i + 1 == v.size()) os << line << "\n";
+      put_number(line, v);
+      if (i % per_line == per_line - 1 || i + 1 == n) os << line << "\n";
     }
   };
   return a;
 }
 
-// The binary payload of an array as VTK lays it out: a UInt64 byte count and
-// the bytes, or the zlib header and blocks.
-struct Payload {
-  std::string header, compressed;
-  std::string_view data;  // the uncompressed bytes (not copied)
-  std::size_t size() const { return header.size() + (compressed.empty() ? data.size() : compressed.size()); }
-};
-Payload payload_of(const OutArray& a, int zlib_level) {
-  Payload p;
-  if (zlib_level > 0) {
-    io::vtkxml::ZlibPayload z = io::vtkxml::zlib_compress(a.bytes, zlib_level, true);
-    p.header = std::move(z.header);
-    p.compressed = std::move(z.blocks);
-    return p;
-  }
-  const std::uint64_t n = a.bytes.size();
-  p.header.assign(reinterpret_cast<const char*>(&n), sizeof n);
-  p.data = a.bytes;
-  return p;
+// An array that is already a vector in memory.
+template <class T>
+OutArray vector_array(const char* type, std::string name, const std::vector<T>& v) {
+  return out_array<T>(type, std::move(name), 1, v.size(),
+                      [&v](ByteSink& s) { s.append(v.data(), v.size() * sizeof(T)); });
 }
+
+// The values of an array, whole (the encodings that need them at once),
+// after `prefix`, in one allocation.
+std::string bytes_of(const OutArray& a, std::string_view prefix = {}) {
+  ByteSink sink(nullptr, prefix.size() + a.nbytes);
+  sink.append(prefix.data(), prefix.size());
+  a.produce(sink);
+  return sink.take();
+}
+
+// The UInt64 byte count that precedes an uncompressed binary array.
+std::string size_header(std::uint64_t n) { return std::string(reinterpret_cast<const char*>(&n), sizeof n); }
 
 void write_array(std::ostream& os, const OutArray& a, const VtuOptions& o, std::optional<std::uint64_t> offset) {
   os << "        <DataArray type=\"" << a.type << "\" Name=\"" << a.name << "\"";
@@ -98,15 +136,14 @@ void write_array(std::ostream& os, const OutArray& a, const VtuOptions& o, std::
   }
   os << " format=\"" << (o.binary ? "binary" : "ascii") << "\">\n";
   if (!o.binary) {
-    a.ascii(os);
+    a.ascii(os, bytes_of(a));
   } else if (o.zlib_level > 0) {
     // As VTK does: the header and the blocks as two base64 streams.
-    const Payload p = payload_of(a, o.zlib_level);
-    os << "          " << io::vtkxml::encode_base64(p.header) << io::vtkxml::encode_base64(p.compressed) << "\n";
+    const io::vtkxml::ZlibPayload z = io::vtkxml::zlib_compress(bytes_of(a), o.zlib_level, true);
+    os << "          " << io::vtkxml::encode_base64(z.header) << io::vtkxml::encode_base64(z.blocks) << "\n";
   } else {
     // The byte count and the values base64-encoded together as one stream.
-    std::string raw = payload_of(a, 0).header;
-    raw.append(a.bytes);
+    const std::string raw = bytes_of(a, size_header(a.nbytes));
     os << "          " << io::vtkxml::encode_base64(raw) << "\n";
   }
   os << "        </DataArray>\n";
@@ -147,40 +184,53 @@ void write_xml(std::ostream& os, std::size_t np, std::size_t nc, const Layout& l
   os << "    </Piece>\n  </UnstructuredGrid>\n";
 }
 
-// The whole file: XML, then for appended output the payloads after '_'.
-void write_file(std::ostream& os, std::size_t np, std::size_t nc, const Layout& layout, const VtuOptions& o) {
-  if (!o.appended) {
-    write_xml(os, np, nc, layout, o, nullptr);
-    os << "</VTKFile>\n";
-    return;
-  }
-  std::vector<Payload> payloads;
+// Appended output: the XML with every array's offset, then '_' and the
+// payloads. Uncompressed payloads are streamed from their producers (their
+// sizes are known up front); compressed ones must be compressed first, since
+// the offsets depend on their sizes, and only they are kept.
+void write_appended(std::ostream& os, std::size_t np, std::size_t nc, const Layout& layout, const VtuOptions& o) {
+  const std::vector<const OutArray*> arrays = layout.in_file_order();
+  std::vector<io::vtkxml::ZlibPayload> zipped;
   std::vector<std::uint64_t> offsets;
   std::uint64_t at = 0;
-  for (const OutArray* a : layout.in_file_order()) {
-    payloads.push_back(payload_of(*a, o.zlib_level));
+  for (const OutArray* a : arrays) {
     offsets.push_back(at);
-    at += payloads.back().size();
+    if (o.zlib_level > 0) {
+      zipped.push_back(io::vtkxml::zlib_compress(bytes_of(*a), o.zlib_level, true));
+      at += zipped.back().header.size() + zipped.back().blocks.size();
+    } else {
+      at += sizeof(std::uint64_t) + a->nbytes;
+    }
   }
   write_xml(os, np, nc, layout, o, &offsets);
   os << "  <AppendedData encoding=\"raw\">\n   _";
-  for (const Payload& p : payloads) {
-    os.write(p.header.data(), static_cast<std::streamsize>(p.header.size()));
-    const std::string_view body = p.compressed.empty() ? p.data : std::string_view(p.compressed);
-    os.write(body.data(), static_cast<std::streamsize>(body.size()));
+  ByteSink sink(&os);
+  for (std::size_t i = 0; i < arrays.size(); ++i) {
+    if (o.zlib_level > 0) {
+      sink.append(zipped[i].header.data(), zipped[i].header.size());
+      sink.append(zipped[i].blocks.data(), zipped[i].blocks.size());
+    } else {
+      sink.put(static_cast<std::uint64_t>(arrays[i]->nbytes));
+      arrays[i]->produce(sink);
+    }
   }
+  sink.flush();
   os << "\n  </AppendedData>\n</VTKFile>\n";
 }
 
-}  // namespace
+// The whole file.
+void write_file(std::ostream& os, std::size_t np, std::size_t nc, const Layout& layout, const VtuOptions& o) {
+  if (o.appended) return write_appended(os, np, nc, layout, o);
+  write_xml(os, np, nc, layout, o, nullptr);
+  os << "</VTKFile>\n";
+}
 
-void write_vtu_poly(const PolyMesh& mesh, const std::string& path,
-                    const std::vector<CellField>& extra, const VtuOptions& options) {
+void check_options(const PolyMesh& mesh, const std::vector<CellField>& extra, const VtuOptions& options) {
   if (options.zlib_level < 0 || options.zlib_level > 9)
     throw UsageError("write_vtu_poly: zlib level " + std::to_string(options.zlib_level) + " outside 0..9");
   if (options.zlib_level > 0 && !options.binary && !options.appended)
     throw UsageError("write_vtu_poly: zlib compression needs binary or appended output");
-  const std::size_t nc = mesh.num_cells(), np = mesh.num_points();
+  const std::size_t nc = mesh.num_cells();
   std::set<std::string> names{"material", "primal_vertex"};
   for (const CellField& f : extra) {
     const std::size_t n = std::visit([](const auto& v) { return v.size(); }, f.values);
@@ -191,49 +241,114 @@ void write_vtu_poly(const PolyMesh& mesh, const std::string& path,
         !names.insert(f.name).second)
       throw UsageError("write_vtu_poly: bad or duplicate cell field name '" + f.name + "'");
   }
+}
 
-  // Assemble every array first, so the stream callback only formats.
-  std::vector<double> coords;
-  coords.reserve(3 * np);
-  std::vector<std::int8_t> class_dim(np);
-  std::vector<std::int32_t> class_tag(np);
-  for (std::size_t i = 0; i < np; ++i) {
-    coords.insert(coords.end(), {mesh.points[i].x, mesh.points[i].y, mesh.points[i].z});
-    class_dim[i] = mesh.point_class[i].dim;
-    class_tag[i] = mesh.point_class[i].tag;
-  }
-  std::vector<std::int64_t> conn, offsets, faces, face_offsets, primal(nc);
-  std::vector<std::int32_t> face_kind, face_tag;
+// Per cell, the end of its distinct points in `connectivity` and of its
+// record in `faces` (the VTK offsets arrays), and the number of faces.
+struct CellOffsets {
+  std::vector<std::int64_t> points, faces;
+  std::size_t half_faces = 0;
+};
+CellOffsets cell_offsets(const PolyMesh& mesh) {
+  CellOffsets o;
+  const std::size_t nc = mesh.num_cells();
+  o.points.resize(nc);
+  o.faces.resize(nc);
+  std::int64_t np = 0, nf = 0;
   for (std::size_t c = 0; c < nc; ++c) {
     const CellId cell(c);
-    for (PointId p : mesh.cell_points(cell)) conn.push_back(p.idx);
-    offsets.push_back(static_cast<std::int64_t>(conn.size()));
-    faces.push_back(static_cast<std::int64_t>(mesh.cell(cell).size()));
-    for (HalfFace h : mesh.cell(cell)) {
-      const std::vector<PointId> loop = mesh.oriented_loop(h);
-      faces.push_back(static_cast<std::int64_t>(loop.size()));
-      for (PointId p : loop) faces.push_back(p.idx);
-      face_kind.push_back(static_cast<std::int32_t>(mesh.face_kind[h.face().idx]));
-      face_tag.push_back(mesh.face_tag[h.face().idx]);
-    }
-    face_offsets.push_back(static_cast<std::int64_t>(faces.size()));
-    primal[c] = mesh.cell_primal[c].valid() ? mesh.cell_primal[c].idx : -1;
+    np += static_cast<std::int64_t>(mesh.cell_points(cell).size());
+    nf += 1;
+    for (HalfFace h : mesh.cell(cell)) nf += 1 + static_cast<std::int64_t>(mesh.face(h.face()).size());
+    o.half_faces += mesh.cell(cell).size();
+    o.points[c] = np;
+    o.faces[c] = nf;
   }
-  const std::vector<std::uint8_t> types(nc, kVtkPolyhedron);
+  return o;
+}
 
+// The Cells section: connectivity (distinct points, first-seen order),
+// offsets, types, faces (per cell: nFaces, then nPts ids... in the cell's
+// outward orientation), faceoffsets.
+std::vector<OutArray> cell_arrays(const PolyMesh& mesh, const CellOffsets& off) {
+  const std::size_t nc = mesh.num_cells();
+  const std::size_t nconn = nc ? static_cast<std::size_t>(off.points.back()) : 0;
+  const std::size_t nfaces = nc ? static_cast<std::size_t>(off.faces.back()) : 0;
+  auto connectivity = [&mesh, nc](ByteSink& s) {
+    for (std::size_t c = 0; c < nc; ++c)
+      for (PointId p : mesh.cell_points(CellId(c))) s.put<std::int64_t>(p.idx);
+  };
+  auto faces = [&mesh, nc](ByteSink& s) {
+    for (std::size_t c = 0; c < nc; ++c) {
+      const auto cell = mesh.cell(CellId(c));
+      s.put(static_cast<std::int64_t>(cell.size()));
+      for (HalfFace h : cell) {
+        const auto f = mesh.face(h.face());
+        s.put(static_cast<std::int64_t>(f.size()));
+        if (h.side() == 1)
+          for (std::size_t i = f.size(); i-- > 0;) s.put<std::int64_t>(f[i].idx);
+        else
+          for (PointId p : f) s.put<std::int64_t>(p.idx);
+      }
+    }
+  };
+  auto types = [nc](ByteSink& s) {
+    for (std::size_t c = 0; c < nc; ++c) s.put(kVtkPolyhedron);
+  };
+  return {out_array<std::int64_t>("Int64", "connectivity", 1, nconn, connectivity),
+          vector_array("Int64", "offsets", off.points), out_array<std::uint8_t>("UInt8", "types", 1, nc, types),
+          out_array<std::int64_t>("Int64", "faces", 1, nfaces, faces),
+          vector_array("Int64", "faceoffsets", off.faces)};
+}
+
+// Every array but the Cells section, built from the mesh as it is written.
+Layout layout_of(const PolyMesh& mesh, const std::vector<CellField>& extra, const CellOffsets& off) {
+  const std::size_t nc = mesh.num_cells(), np = mesh.num_points();
+  auto per_half_face = [&mesh, nc](bool kind) {
+    return [&mesh, nc, kind](ByteSink& s) {
+      for (std::size_t c = 0; c < nc; ++c)
+        for (HalfFace h : mesh.cell(CellId(c)))
+          s.put(kind ? static_cast<std::int32_t>(mesh.face_kind[h.face().idx])
+                      : static_cast<std::int32_t>(mesh.face_tag[h.face().idx]));
+    };
+  };
   Layout l;
-  l.field = {out_array("Int32", "face_kind", 1, face_kind, true), out_array("Int32", "face_tag", 1, face_tag, true)};
-  l.point = {out_array("Int8", "class_dim", 1, class_dim), out_array("Int32", "class_tag", 1, class_tag)};
-  l.cell = {out_array("Int32", "material", 1, mesh.cell_material), out_array("Int64", "primal_vertex", 1, primal)};
+  l.field = {out_array<std::int32_t>("Int32", "face_kind", 1, off.half_faces, per_half_face(true), true),
+             out_array<std::int32_t>("Int32", "face_tag", 1, off.half_faces, per_half_face(false), true)};
+  l.point = {out_array<std::int8_t>("Int8", "class_dim", 1, np,
+                                    [&mesh, np](ByteSink& s) {
+                                      for (std::size_t i = 0; i < np; ++i) s.put(static_cast<std::int8_t>(mesh.point_class[i].dim));
+                                    }),
+             out_array<std::int32_t>("Int32", "class_tag", 1, np, [&mesh, np](ByteSink& s) {
+               for (std::size_t i = 0; i < np; ++i) s.put(static_cast<std::int32_t>(mesh.point_class[i].tag));
+             })};
+  l.cell = {vector_array("Int32", "material", mesh.cell_material),
+            out_array<std::int64_t>("Int64", "primal_vertex", 1, nc, [&mesh, nc](ByteSink& s) {
+              for (std::size_t c = 0; c < nc; ++c)
+                s.put(mesh.cell_primal[c].valid() ? static_cast<std::int64_t>(mesh.cell_primal[c].idx) : -1);
+            })};
   for (const CellField& f : extra) {
-    if (const auto* d = std::get_if<std::vector<double>>(&f.values)) l.cell.push_back(out_array("Float64", f.name, 1, *d));
-    else l.cell.push_back(out_array("Int32", f.name, 1, std::get<std::vector<std::int32_t>>(f.values)));
+    if (const auto* d = std::get_if<std::vector<double>>(&f.values)) l.cell.push_back(vector_array("Float64", f.name, *d));
+    else l.cell.push_back(vector_array("Int32", f.name, std::get<std::vector<std::int32_t>>(f.values)));
   }
-  l.points = {out_array("Float64", "Points", 3, coords)};
-  l.cells = {out_array("Int64", "connectivity", 1, conn), out_array("Int64", "offsets", 1, offsets),
-             out_array("UInt8", "types", 1, types), out_array("Int64", "faces", 1, faces),
-             out_array("Int64", "faceoffsets", 1, face_offsets)};
-  write_file_atomically(path, [&](std::ostream& os) { write_file(os, np, nc, l, options); },
+  l.points = {out_array<double>("Float64", "Points", 3, 3 * np, [&mesh, np](ByteSink& s) {
+    for (std::size_t i = 0; i < np; ++i) {
+      const double xyz[3] = {mesh.points[i].x, mesh.points[i].y, mesh.points[i].z};
+      s.append(xyz, sizeof xyz);
+    }
+  })};
+  l.cells = cell_arrays(mesh, off);
+  return l;
+}
+
+}  // namespace
+
+void write_vtu_poly(const PolyMesh& mesh, const std::string& path,
+                    const std::vector<CellField>& extra, const VtuOptions& options) {
+  check_options(mesh, extra, options);
+  const CellOffsets offsets = cell_offsets(mesh);
+  const Layout l = layout_of(mesh, extra, offsets);
+  write_file_atomically(path, [&](std::ostream& os) { write_file(os, mesh.num_points(), mesh.num_cells(), l, options); },
                         options.binary || options.appended);
 }
 

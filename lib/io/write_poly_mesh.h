@@ -29,7 +29,9 @@ PolyFormat parse_poly_format(std::string_view name);
 PolyFormat poly_format_for(std::string_view requested, const std::string& path);
 
 struct PolyWriteOptions {
-  VtuOptions vtu{true};  // base64 binary arrays
+  // Appended raw binary (VTK's own default): streamed to the file, no
+  // encoding, the fastest to write and to read.
+  VtuOptions vtu{true, true};
   FoamOptions foam;
 };
 

@@ -1,8 +1,13 @@
 #include "mesh/validate.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <span>
 #include <tuple>
 #include <utility>
 
@@ -10,23 +15,37 @@
 
 namespace polydual {
 
-double cell_volume(const PolyMesh& pm, CellId c) {
-  const auto pts = pm.cell_points(c);
+namespace {
+
+// The volume of cell c by its decomposition tets (a, b, F, R) around the mean
+// R of `pts` (the cell's distinct points in cell_points order); F and each
+// edge follow the cell's outward loops. No allocation.
+double volume_around(const PolyMesh& pm, CellId c, std::span<const PointId> pts) {
   Vec3 R{};
   for (PointId p : pts) R += pm.points[p.idx];
   R = R / double(pts.size());
   double vol = 0;
   for (HalfFace h : pm.cell(c)) {
-    const auto loop = pm.oriented_loop(h);
+    const auto f = pm.face(h.face());
+    const std::size_t n = f.size();
+    // The oriented loop: side 1 sees the stored loop reversed.
+    auto at = [&](std::size_t k) { return pm.points[(h.side() == 0 ? f[k] : f[n - 1 - k]).idx]; };
     Vec3 F{};
-    for (PointId p : loop) F += pm.points[p.idx];
-    F = F / double(loop.size());
-    for (std::size_t k = 0; k < loop.size(); ++k) {
-      const Vec3 a = pm.points[loop[k].idx] - R, b = pm.points[loop[(k + 1) % loop.size()].idx] - R;
+    for (std::size_t k = 0; k < n; ++k) F += at(k);
+    F = F / double(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      const Vec3 a = at(k) - R, b = at((k + 1) % n) - R;
       vol += dot(a, cross(b, F - R)) / 6.0;
     }
   }
   return vol;
+}
+
+}  // namespace
+
+double cell_volume(const PolyMesh& pm, CellId c) {
+  const std::vector<PointId> pts = pm.cell_points(c);
+  return volume_around(pm, c, pts);
 }
 
 namespace {
@@ -73,47 +92,88 @@ void check_half_face_references(const PolyMesh& pm, ValidationReport& r) {
 // half-face loop counts forward when a < b: a closed cell uses each edge as
 // often forward as backward; a reversed face makes some edge's two uses point
 // the same way.
-void check_cells(const PolyMesh& pm, const std::vector<bool>& loop_in_range, ValidationReport& r) {
+// What check_cells finds in one cell.
+struct CellCheck {
+  bool sound = true;  // every half-face names a face whose points exist
+  bool closed = true, manifold = true, misoriented = false, slit = false;
+  double volume = 0;  // when sound
+};
+
+// Per-thread scratch of check_cell; `seen[p] == c + 1` when point p is already
+// among cell c's points.
+struct CellScratch {
   std::vector<std::pair<std::uint64_t, int>> edges;  // (edge key, +1 forward / -1 backward)
-  std::vector<std::uint32_t> faces_seen;
-  for (std::size_t c = 0; c < pm.num_cells(); ++c) {
-    edges.clear();
-    faces_seen.clear();
-    bool sound = true;  // every half-face names a face whose points exist
-    for (HalfFace h : pm.cell(CellId(c))) {
-      if (h.face().idx >= pm.num_faces() || !loop_in_range[h.face().idx]) {
-        sound = false;
-        continue;
-      }
-      faces_seen.push_back(h.face().idx);
-      const auto loop = pm.oriented_loop(h);
-      for (std::size_t k = 0; k < loop.size(); ++k) {
-        const std::uint32_t a = loop[k].idx, b = loop[(k + 1) % loop.size()].idx;
-        edges.emplace_back((std::uint64_t(std::min(a, b)) << 32) | std::max(a, b), a < b ? 1 : -1);
-      }
+  std::vector<std::uint32_t> faces_seen, seen;
+  std::vector<PointId> points;
+};
+
+// Closed: every edge of the cell's oriented loops is used once in each
+// direction; manifold: by exactly two loops; slit: a face appears twice.
+CellCheck check_cell(const PolyMesh& pm, std::uint32_t c, const std::vector<bool>& loop_in_range, CellScratch& s) {
+  CellCheck r;
+  s.edges.clear();
+  s.faces_seen.clear();
+  for (HalfFace h : pm.cell(CellId(c))) {
+    if (h.face().idx >= pm.num_faces() || !loop_in_range[h.face().idx]) {
+      r.sound = false;
+      continue;
     }
-    std::sort(edges.begin(), edges.end());
-    bool closed = true, manifold = true, misoriented = false;
-    for (std::size_t i = 0; i < edges.size();) {
-      std::size_t j = i;
-      int balance = 0;
-      for (; j < edges.size() && edges[j].first == edges[i].first; ++j) balance += edges[j].second;
-      closed &= balance == 0;
-      manifold &= j - i == 2;
-      misoriented |= std::abs(balance) >= 2;
-      i = j;
+    s.faces_seen.push_back(h.face().idx);
+    const auto f = pm.face(h.face());
+    const std::size_t n = f.size();
+    auto at = [&](std::size_t k) { return (h.side() == 0 ? f[k] : f[n - 1 - k]).idx; };
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::uint32_t a = at(k), b = at((k + 1) % n);
+      s.edges.emplace_back((std::uint64_t(std::min(a, b)) << 32) | std::max(a, b), a < b ? 1 : -1);
     }
-    std::sort(faces_seen.begin(), faces_seen.end());
-    const bool slit = std::adjacent_find(faces_seen.begin(), faces_seen.end()) != faces_seen.end();
-    r.closed_cells += closed;
-    r.manifold_cells += closed && manifold;
-    r.misoriented_cells += misoriented;
-    r.slit_cells += slit;
-    if (!closed && r.open_cells.size() < 100) r.open_cells.push_back(CellId(c));
-    if (!sound) continue;
-    const double v = cell_volume(pm, CellId(c));
-    if (closed && !slit && v <= 0) ++r.negative_volume_cells;
-    r.material_volume[pm.cell_material[c]] += v;
+  }
+  std::sort(s.edges.begin(), s.edges.end());
+  for (std::size_t i = 0; i < s.edges.size();) {
+    std::size_t j = i;
+    int balance = 0;
+    for (; j < s.edges.size() && s.edges[j].first == s.edges[i].first; ++j) balance += s.edges[j].second;
+    r.closed &= balance == 0;
+    r.manifold &= j - i == 2;
+    r.misoriented |= std::abs(balance) >= 2;
+    i = j;
+  }
+  std::sort(s.faces_seen.begin(), s.faces_seen.end());
+  r.slit = std::adjacent_find(s.faces_seen.begin(), s.faces_seen.end()) != s.faces_seen.end();
+  if (!r.sound) return r;
+  // The distinct points in cell_points order (first seen along stored loops).
+  s.points.clear();
+  for (HalfFace h : pm.cell(CellId(c)))
+    for (PointId p : pm.face(h.face()))
+      if (s.seen[p.idx] != c + 1) {
+        s.seen[p.idx] = c + 1;
+        s.points.push_back(p);
+      }
+  r.volume = volume_around(pm, CellId(c), s.points);
+  return r;
+}
+
+// Every cell checked in parallel, then counted and summed in cell order (the
+// volumes' sums do not depend on the thread count).
+void check_cells(const PolyMesh& pm, const std::vector<bool>& loop_in_range, ValidationReport& r) {
+  const std::size_t nc = pm.num_cells();
+  std::vector<CellCheck> checks(nc);
+  tbb::enumerable_thread_specific<CellScratch> scratch;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nc, 256), [&](const auto& range) {
+    CellScratch& s = scratch.local();
+    if (s.seen.empty()) s.seen.assign(pm.num_points(), 0);
+    for (std::size_t c = range.begin(); c != range.end(); ++c)
+      checks[c] = check_cell(pm, static_cast<std::uint32_t>(c), loop_in_range, s);
+  });
+  for (std::size_t c = 0; c < nc; ++c) {
+    const CellCheck& k = checks[c];
+    r.closed_cells += k.closed;
+    r.manifold_cells += k.closed && k.manifold;
+    r.misoriented_cells += k.misoriented;
+    r.slit_cells += k.slit;
+    if (!k.closed && r.open_cells.size() < 100) r.open_cells.push_back(CellId(c));
+    if (!k.sound) continue;
+    if (k.closed && !k.slit && k.volume <= 0) ++r.negative_volume_cells;
+    r.material_volume[pm.cell_material[c]] += k.volume;
   }
 }
 

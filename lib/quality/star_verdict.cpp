@@ -1,6 +1,7 @@
 #include "quality/star_verdict.h"
 
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
@@ -55,13 +56,62 @@ CellVerdict star_shaped_verdict(const PolyMesh& mesh, CellId c) {
   return v;
 }
 
+namespace {
+
+// Per-thread scratch of the verdicts straight from the mesh: `seen[p] == c + 1`
+// when point p is already among cell c's points (one stamp per mesh point,
+// ~5 B per input tet and thread, against ~240 for a whole MeshStencil).
+struct MeshScratch {
+  std::vector<std::uint32_t> seen;
+  std::vector<Point3> points;  // [cell points | current face points]
+};
+
+// The verdict of cell c from the mesh itself, the same decomposition tets as
+// the stencil's: the cell's distinct points first seen along its outward loops,
+// each loop in the cell's outward order (side 1 reversed).
+CellVerdict verdict_from_mesh(const PolyMesh& mesh, std::uint32_t c, MeshScratch& s) {
+  const auto cell = mesh.cell(CellId(c));
+  s.points.clear();
+  for (HalfFace h : cell) {
+    const auto f = mesh.face(h.face());
+    const std::size_t k = f.size();
+    for (std::size_t i = 0; i < k; ++i) {
+      const PointId p = h.side() == 0 ? f[i] : f[k - 1 - i];
+      if (s.seen[p.idx] != c + 1) {
+        s.seen[p.idx] = c + 1;
+        s.points.push_back(mesh.points[p.idx]);
+      }
+    }
+  }
+  const std::size_t m = s.points.size();
+  CellVerdict v;
+  for (HalfFace h : cell) {
+    const auto f = mesh.face(h.face());
+    const std::size_t k = f.size();
+    s.points.resize(m);
+    for (std::size_t i = 0; i < k; ++i) s.points.push_back(mesh.points[(h.side() == 0 ? f[i] : f[k - 1 - i]).idx]);
+    const std::span<const Point3> cell_pts(s.points.data(), m);
+    const std::span<const Point3> face(s.points.data() + m, k);
+    for (std::size_t i = 0; i < k; ++i) {
+      ++v.total_tets;
+      if (decomposition_tet_sign(face[i], face[(i + 1) % k], face, cell_pts) != Sign::Positive) {
+        v.valid = false;
+        ++v.bad_tets;
+      }
+    }
+  }
+  return v;
+}
+
+}  // namespace
+
 std::vector<CellVerdict> star_shaped_verdicts(const PolyMesh& mesh) {
-  const MeshStencil s = build_stencil(mesh);
   std::vector<CellVerdict> out(mesh.num_cells());
+  tbb::enumerable_thread_specific<MeshScratch> scratch;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, out.size(), 256), [&](const auto& r) {
-    std::vector<Point3> scratch;
-    for (std::size_t c = r.begin(); c != r.end(); ++c)
-      out[c] = star_shaped_verdict(s, static_cast<std::uint32_t>(c), mesh.points, false, scratch);
+    MeshScratch& s = scratch.local();
+    if (s.seen.empty()) s.seen.assign(mesh.num_points(), 0);
+    for (std::size_t c = r.begin(); c != r.end(); ++c) out[c] = verdict_from_mesh(mesh, static_cast<std::uint32_t>(c), s);
   });
   return out;
 }

@@ -1,0 +1,319 @@
+// Gmsh meshing of the demo domains: the only code of polydual that calls
+// Gmsh (generate/gmsh_module.h). Gmsh is one global state per process, so
+// every call holds a mutex for the whole initialize..finalize session, and the
+// session object finalizes even when Gmsh throws. Nothing here throws across
+// the table: every entry catches and returns the message.
+#include <gmsh.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "generate/domains.h"  // the Domain enum only (no polydual code is linked)
+#include "generate/gmsh_module.h"
+
+namespace polydual {
+
+namespace {
+
+constexpr const char* kNames[] = {"cube", "twomat", "fichera", "fracture"};
+std::string name_of(Domain d) { return kNames[static_cast<int>(d)]; }
+
+// A failure whose message is already complete (the session's options).
+class GmshFailure : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Gmsh 4.8 API errors arrive as std::string or std::exception depending on the
+// call path; normalise them into one message. The CAD checks below throw
+// std::logic_error with a complete message, kept as it is.
+std::string gmsh_error_message(const std::string& what_doing) {
+  try {
+    throw;
+  } catch (const GmshFailure& e) {
+    return e.what();
+  } catch (const std::logic_error& e) {
+    return e.what();
+  } catch (const std::exception& e) {
+    return "gmsh failed while " + what_doing + ": " + e.what();
+  } catch (const std::string& s) {
+    return "gmsh failed while " + what_doing + ": " + s;
+  } catch (...) {
+    return "gmsh failed while " + what_doing;
+  }
+}
+
+[[noreturn]] void rethrow_gmsh_error(const char* what_doing) {
+  throw GmshFailure(gmsh_error_message(what_doing));
+}
+
+std::mutex& gmsh_mutex() {
+  static std::mutex m;
+  return m;
+}
+
+// One initialize..finalize pair with the options that make meshing
+// deterministic and silent. Holds the global Gmsh lock for its lifetime.
+class GmshSession {
+ public:
+  GmshSession() : lock_(gmsh_mutex()) {
+    // No config files: a user's ~/.gmshrc must not change our meshes.
+    gmsh::initialize(0, nullptr, false);
+    try {
+      gmsh::option::setNumber("General.Terminal", 0);
+      gmsh::option::setNumber("General.Verbosity", 0);
+      // Multi-threaded meshing is not reproducible; one thread is.
+      gmsh::option::setNumber("General.NumThreads", 1);
+      gmsh::option::setNumber("Mesh.MaxNumThreads1D", 1);
+      gmsh::option::setNumber("Mesh.MaxNumThreads2D", 1);
+      gmsh::option::setNumber("Mesh.MaxNumThreads3D", 1);
+      gmsh::option::setNumber("Mesh.RandomSeed", 1);
+      gmsh::option::setNumber("Mesh.Algorithm", 6);    // Frontal-Delaunay surfaces
+      gmsh::option::setNumber("Mesh.Algorithm3D", 1);  // Delaunay volumes
+      gmsh::option::setNumber("Mesh.Optimize", 1);
+      // The size comes only from the global h (set per pass), not from CAD points
+      // or curvature (our domains are flat).
+      gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
+      gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
+      gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 1);
+      gmsh::model::add("polydual");
+    } catch (...) {
+      gmsh::finalize();
+      rethrow_gmsh_error("setting options");
+    }
+  }
+  ~GmshSession() { gmsh::finalize(); }
+  GmshSession(const GmshSession&) = delete;
+  GmshSession& operator=(const GmshSession&) = delete;
+
+ private:
+  std::lock_guard<std::mutex> lock_;
+};
+
+double domain_volume(Domain d) {
+  switch (d) {
+    case Domain::Cube: return 1.0;
+    case Domain::TwoMat: return 2.0;
+    case Domain::Fichera: return 1.0 - 0.125;
+    case Domain::Fracture: return 1.0;
+  }
+  return 1.0;
+}
+
+// Volume entity tag whose centre of mass is c (within 1e-9), or -1.
+int volume_at(double cx, double cy, double cz) {
+  gmsh::vectorpair vols;
+  gmsh::model::getEntities(vols, 3);
+  for (auto [dim, tag] : vols) {
+    double x, y, z;
+    gmsh::model::occ::getCenterOfMass(dim, tag, x, y, z);
+    if (std::abs(x - cx) < 1e-9 && std::abs(y - cy) < 1e-9 && std::abs(z - cz) < 1e-9) return tag;
+  }
+  return -1;
+}
+
+// Builds the CAD of domain d in the OCC kernel and synchronises the model.
+// Checks the topology each construction promises, since a silent change in
+// OCC's boolean results would give a different domain than the paper's.
+void build_geometry(Domain d) {
+  namespace occ = gmsh::model::occ;
+  gmsh::vectorpair out;
+  std::vector<gmsh::vectorpair> out_map;
+  switch (d) {
+    case Domain::Cube:
+      occ::addBox(0, 0, 0, 1, 1, 1, 1);
+      occ::synchronize();
+      break;
+    case Domain::TwoMat: {
+      // Fragment (general fuse) makes the shared face x=1 one conformal surface
+      // bounding both volumes: the material interface.
+      int a = occ::addBox(0, 0, 0, 1, 1, 1, 1);
+      int b = occ::addBox(1, 0, 0, 1, 1, 1, 2);
+      occ::fragment({{3, a}}, {{3, b}}, out, out_map);
+      occ::synchronize();
+      if (volume_at(0.5, 0.5, 0.5) != 1 || volume_at(1.5, 0.5, 0.5) != 2)
+        throw std::logic_error("twomat: OCC fragment did not keep region tags 1 (x<1), 2 (x>1)");
+      break;
+    }
+    case Domain::Fichera: {
+      int a = occ::addBox(0, 0, 0, 1, 1, 1, 1);
+      int b = occ::addBox(0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 2);
+      occ::cut({{3, a}}, {{3, b}}, out, out_map);
+      occ::synchronize();
+      break;
+    }
+    case Domain::Fracture: {
+      int a = occ::addBox(0, 0, 0, 1, 1, 1, 1);
+      int s = occ::addRectangle(0, 0.2, 0.5, 0.6, 0.6, 100);
+      // Fragmenting a volume with a surface inside it embeds the surface (Gmsh
+      // docs): the mesh becomes conformal to it, and it bounds no second region.
+      occ::fragment({{3, a}}, {{2, s}}, out, out_map);
+      occ::synchronize();
+      break;
+    }
+  }
+  gmsh::vectorpair vols, faces;
+  gmsh::model::getEntities(vols, 3);
+  gmsh::model::getEntities(faces, 2);
+  const std::size_t want_vols = d == Domain::TwoMat ? 2 : 1;
+  const std::size_t want_faces =
+      d == Domain::Cube ? 6 : d == Domain::TwoMat ? 11 : d == Domain::Fichera ? 9 : 7;
+  if (vols.size() != want_vols || faces.size() != want_faces)
+    throw std::logic_error(name_of(d) + ": unexpected CAD topology (" +
+                           std::to_string(vols.size()) + " volumes, " +
+                           std::to_string(faces.size()) + " surfaces)");
+  if (d == Domain::Fracture) {
+    // The rectangle must be inside the volume (embedded), not on its boundary.
+    gmsh::vectorpair bnd;
+    gmsh::model::getBoundary(vols, bnd, false, false, false);
+    if (bnd.size() != 6)
+      throw std::logic_error("fracture: the rectangle was not embedded in the volume");
+  }
+}
+
+std::size_t count_tets() {
+  std::vector<int> types;
+  std::vector<std::vector<std::size_t>> tags, nodes;
+  gmsh::model::mesh::getElements(types, tags, nodes, 3, -1);
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < types.size(); ++i)
+    if (types[i] == 4) n += tags[i].size();
+  return n;
+}
+
+void mesh_with_size(double h) {
+  gmsh::model::mesh::clear();
+  gmsh::option::setNumber("Mesh.MeshSizeMin", h);
+  gmsh::option::setNumber("Mesh.MeshSizeMax", h);
+  gmsh::model::mesh::generate(3);
+}
+
+// Meshes the current model with about `target` tets. Delaunay meshes with a
+// uniform size h have about c·V/h^3 tets; c depends on the algorithm and, for
+// coarse meshes, on the boundary, and the count jumps whenever the number of
+// segments on a model edge changes. So: measure c on a trial of at most
+// kCalibrationTets, then search h (secant on log n against log h, bisection once
+// the target is bracketed) and keep the closest pass. Every step depends only
+// on (domain, target), so the result is deterministic.
+void mesh_to_target(Domain d, std::size_t target) {
+  constexpr std::size_t kCalibrationTets = 20000;
+  constexpr double kInitialDensity = 7.0;  // tets per h^3, Gmsh Delaunay, measured
+  const double V = domain_volume(d);
+  const double goal_n = static_cast<double>(target);
+  auto h_for = [V](double c, double n) { return std::cbrt(c * V / n); };
+
+  // Trial for big targets: its density extrapolates well (boundary share shrinks).
+  double c = kInitialDensity;
+  if (target > kCalibrationTets) {
+    const double h = h_for(c, kCalibrationTets);
+    mesh_with_size(h);
+    c = static_cast<double>(count_tets()) * h * h * h / V;
+  }
+  // Big meshes are costly to redo, so they get fewer passes and a looser
+  // tolerance (the trial's density extrapolates to within ~10% there).
+  const bool big = target > 200000;
+  const int max_passes = big ? 2 : 8;
+  const double tolerance = std::log(big ? 1.15 : 1.05);
+  double best_h = 0, best_err = std::numeric_limits<double>::infinity();
+  double lo_h = 0, hi_h = 0;  // h giving too many tets (small h) / too few (large h)
+  double h = h_for(c, goal_n);
+  double last_h = 0;
+  for (int pass = 0; pass < max_passes; ++pass) {
+    mesh_with_size(h);
+    last_h = h;
+    const double n = static_cast<double>(count_tets());
+    if (n == 0) throw std::runtime_error(name_of(d) + ": gmsh produced no tetrahedra");
+    const double err = std::abs(std::log(n / goal_n));
+    if (err < best_err) best_err = err, best_h = h;
+    if (best_err <= tolerance) break;
+    if (n > goal_n) lo_h = h; else hi_h = h;
+    c = n * h * h * h / V;
+    double next = h_for(c, goal_n);
+    // Once bracketed, stay strictly inside the bracket (the count is a step
+    // function of h at coarse sizes, so the secant alone can cycle).
+    if (lo_h > 0 && hi_h > 0 && (next <= lo_h || next >= hi_h || pass >= 3))
+      next = std::sqrt(lo_h * hi_h);
+    h = next;
+  }
+  if (last_h != best_h) mesh_with_size(best_h);
+}
+
+// The mesh as Gmsh holds it: all nodes, and the elements of every entity of
+// dimension 3 (tets), 2 (triangles), 1 (segments) and 0 (points), entities in
+// (dim, tag) order, highest dimension first.
+void extract_raw(gmsh_module::RawMesh& out) {
+  std::vector<double> param;
+  gmsh::model::mesh::getNodes(out.node_tags, out.coords, param, -1, -1, false, false);
+  constexpr int kElementType[] = {15, 1, 2, 4};  // point, segment, triangle, tet
+  for (int dim = 3; dim >= 0; --dim) {
+    gmsh::vectorpair entities;
+    gmsh::model::getEntities(entities, dim);
+    std::sort(entities.begin(), entities.end());
+    for (auto [edim, tag] : entities) {
+      std::vector<int> types;
+      std::vector<std::vector<std::size_t>> tags, nodes;
+      gmsh::model::mesh::getElements(types, tags, nodes, edim, tag);
+      gmsh_module::RawBlock block{dim, tag, {}};
+      for (std::size_t i = 0; i < types.size(); ++i)
+        if (types[i] == kElementType[dim]) block.nodes = std::move(nodes[i]);
+      out.blocks.push_back(std::move(block));
+    }
+  }
+}
+
+bool valid_domain(int domain, std::string& error) {
+  if (domain >= 0 && domain < gmsh_module::kNumDomains) return true;
+  error = "unknown domain number " + std::to_string(domain);
+  return false;
+}
+
+bool mesh_entry(int domain, std::size_t target, gmsh_module::RawMesh& out, std::string& error) {
+  if (!valid_domain(domain, error)) return false;
+  const auto d = static_cast<Domain>(domain);
+  try {
+    GmshSession session;
+    build_geometry(d);
+    mesh_to_target(d, target);
+    extract_raw(out);
+    return true;
+  } catch (...) {
+    error = gmsh_error_message("meshing " + name_of(d));
+    return false;
+  }
+}
+
+bool write_msh_entry(int domain, std::size_t target, const char* path, std::string& error) {
+  if (!valid_domain(domain, error)) return false;
+  const auto d = static_cast<Domain>(domain);
+  try {
+    GmshSession session;
+    build_geometry(d);
+    mesh_to_target(d, target);
+    // SaveAll: without physical groups Gmsh writes everything anyway, but the
+    // option makes that explicit and survives a later physical group.
+    gmsh::option::setNumber("Mesh.SaveAll", 1);
+    gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
+    gmsh::option::setNumber("Mesh.Binary", 0);
+    gmsh::write(path);
+    return true;
+  } catch (...) {
+    error = gmsh_error_message(std::string("writing ") + path);
+    return false;
+  }
+}
+
+constexpr gmsh_module::GmshApi kApi{gmsh_module::kAbiVersion, mesh_entry, write_msh_entry};
+
+}  // namespace
+
+}  // namespace polydual
+
+extern "C" __attribute__((visibility("default"))) const polydual::gmsh_module::GmshApi* polydual_gmsh_module_api() {
+  return &polydual::kApi;
+}
