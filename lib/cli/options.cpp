@@ -53,8 +53,9 @@ const std::vector<OptionDef> kTable = {
      "split the cells still invalid after optimisation into star-shaped pieces (experimental: slit cells at "
      "fracture tips are not split yet)",
      nullptr, [](Settings& s, const std::string&) { s.params.split.enabled = true; }},
-    {"--optimize", K::Choice, "none|local|global", kNoRange, kNoRange,
-     "untangle and smooth: the paper's local Newton scheme, a global Ceres L-BFGS solve, or none",
+    {"--optimize", K::Choice, "none|untangle|local|global", kNoRange, kNoRange,
+     "untangle and smooth: the paper's local Newton scheme, a global Ceres L-BFGS solve, untangling only "
+     "(certified valid, no smoothing), or none",
      [](const Settings& d) { return std::string(method_name(d.params.optim.method)); },
      [](Settings& s, const std::string& v) { s.params.optim.method = parse_method(v); }},
     {"--metric", K::Choice, "q1|q2", kNoRange, kNoRange, "corner set of the optimiser's objective and quality",

@@ -283,7 +283,10 @@ void run_local(Context& ctx) {
   // everywhere) and later sweeps follow the settling rule.
   constexpr int kNever = -2;
   std::vector<int> last_change(nc, kNever);
-  int untangle_left = ctx.report->iterations.back().invalid > 0 ? prm.untangle_sweeps : 0;
+  // Method::Untangle: only untangling sweeps, as many as max_iter allows.
+  const bool untangle_only = prm.method == OptimParams::Method::Untangle;
+  int untangle_left = ctx.report->iterations.back().invalid > 0 ? (untangle_only ? prm.max_iter : prm.untangle_sweeps) : 0;
+  if (untangle_only && untangle_left == 0) return;
   bool full_sweep = untangle_left == 0;
   double f_prev = ctx.report->iterations.back().objective;
   for (int sweep = 1; sweep <= prm.max_iter; ++sweep) {
@@ -330,6 +333,7 @@ void run_local(Context& ctx) {
       // The objective test is meaningless while only a few points move.
       --untangle_left;
       if (rec.invalid == 0 || updates == 0) untangle_left = 0;
+      if (untangle_only && untangle_left == 0) break;
       full_sweep = untangle_left == 0;
       f_prev = rec.objective;
       continue;

@@ -17,10 +17,13 @@
 namespace polydual {
 
 struct OptimParams {
-  enum class Method : std::uint8_t { None, Local, Global };
+  enum class Method : std::uint8_t { None, Local, Global, Untangle };
   enum class Derivatives : std::uint8_t { FiniteDifference, Exact, Analytic };
 
-  // Optimiser. Default Local (the paper's scheme).
+  // Optimiser. Default Local (the paper's scheme). Untangle: the local scheme's
+  // untangling sweeps only (points of invalid cells and the growing rings around
+  // the points that moved, same exact validity guarantee), until no cell is
+  // invalid, a sweep moves nothing, or max_iter sweeps; no smoothing sweep.
   Method method = Method::Local;
   // Corner set of the objective and of the reported quality. Default Q1 (the
   // paper found it untangles faster).
@@ -106,7 +109,7 @@ OptimReport optimize(PolyMesh& mesh, const ClassifiedTetMesh* primal, const Opti
                      const ProgressFn& progress = {});
 
 // CLI parsers; throw UsageError on an unknown value.
-OptimParams::Method parse_method(std::string_view s);             // none|local|global
+OptimParams::Method parse_method(std::string_view s);             // none|untangle|local|global
 Metric parse_metric(std::string_view s);                          // q1|q2
 OptimParams::Derivatives parse_derivatives(std::string_view s);   // analytic|fd|exact
 const char* method_name(OptimParams::Method m);
