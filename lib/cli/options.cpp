@@ -61,8 +61,9 @@ const std::vector<OptionDef> kTable = {
     {"--metric", K::Choice, "q1|q2", kNoRange, kNoRange, "corner set of the optimiser's objective and quality",
      [](const Settings& d) { return std::string(d.params.optim.metric == Metric::Q1 ? "q1" : "q2"); },
      [](Settings& s, const std::string& v) { s.params.optim.metric = parse_metric(v); }},
-    {"--derivatives", K::Choice, "analytic|fd|exact", kNoRange, kNoRange,
-     "local-scheme Newton derivatives: closed form, finite differences (the paper) or ceres::Jet",
+    {"--derivatives", K::Choice, "analytic|lagged|fd|exact", kNoRange, kNoRange,
+     "local-scheme Newton derivatives: closed form, closed form with cell and face centres lagged during a "
+     "visit, finite differences (the paper) or ceres::Jet",
      [](const Settings& d) { return std::string(derivatives_name(d.params.optim.derivatives)); },
      [](Settings& s, const std::string& v) { s.params.optim.derivatives = parse_derivatives(v); }},
     {"--max-iter", K::Int, "N", 0, OptimParams::kMaxIterLimit, "optimiser sweeps (local) or rounds (global), at most",

@@ -182,7 +182,8 @@ OptimParams::Derivatives parse_derivatives(std::string_view s) {
   if (s == "fd") return OptimParams::Derivatives::FiniteDifference;
   if (s == "exact") return OptimParams::Derivatives::Exact;
   if (s == "analytic") return OptimParams::Derivatives::Analytic;
-  throw UsageError("unknown derivatives '" + std::string(s) + "' (expected analytic|fd|exact)");
+  if (s == "lagged") return OptimParams::Derivatives::Lagged;
+  throw UsageError("unknown derivatives '" + std::string(s) + "' (expected analytic|lagged|fd|exact)");
 }
 
 const char* method_name(OptimParams::Method m) {
@@ -195,8 +196,13 @@ const char* method_name(OptimParams::Method m) {
   return "none";
 }
 const char* derivatives_name(OptimParams::Derivatives d) {
-  return d == OptimParams::Derivatives::Exact ? "exact"
-         : (d == OptimParams::Derivatives::Analytic ? "analytic" : "fd");
+  switch (d) {
+    case OptimParams::Derivatives::Exact: return "exact";
+    case OptimParams::Derivatives::Analytic: return "analytic";
+    case OptimParams::Derivatives::Lagged: return "lagged";
+    case OptimParams::Derivatives::FiniteDifference: return "fd";
+  }
+  return "fd";
 }
 
 }  // namespace polydual
