@@ -53,15 +53,17 @@ const std::vector<OptionDef> kTable = {
      "split the cells still invalid after optimisation into star-shaped pieces (experimental: slit cells at "
      "fracture tips are not split yet)",
      nullptr, [](Settings& s, const std::string&) { s.params.split.enabled = true; }},
-    {"--optimize", K::Choice, "none|local|global", kNoRange, kNoRange,
-     "untangle and smooth: the paper's local Newton scheme, a global Ceres L-BFGS solve, or none",
+    {"--optimize", K::Choice, "none|untangle|local|global", kNoRange, kNoRange,
+     "untangle and smooth: the paper's local Newton scheme, a global Ceres L-BFGS solve, untangling only "
+     "(certified valid, no smoothing), or none",
      [](const Settings& d) { return std::string(method_name(d.params.optim.method)); },
      [](Settings& s, const std::string& v) { s.params.optim.method = parse_method(v); }},
     {"--metric", K::Choice, "q1|q2", kNoRange, kNoRange, "corner set of the optimiser's objective and quality",
      [](const Settings& d) { return std::string(d.params.optim.metric == Metric::Q1 ? "q1" : "q2"); },
      [](Settings& s, const std::string& v) { s.params.optim.metric = parse_metric(v); }},
-    {"--derivatives", K::Choice, "analytic|fd|exact", kNoRange, kNoRange,
-     "local-scheme Newton derivatives: closed form, finite differences (the paper) or ceres::Jet",
+    {"--derivatives", K::Choice, "analytic|lagged|fd|exact", kNoRange, kNoRange,
+     "local-scheme Newton derivatives: closed form, closed form with cell and face centres lagged during a "
+     "visit, finite differences (the paper) or ceres::Jet",
      [](const Settings& d) { return std::string(derivatives_name(d.params.optim.derivatives)); },
      [](Settings& s, const std::string& v) { s.params.optim.derivatives = parse_derivatives(v); }},
     {"--max-iter", K::Int, "N", 0, OptimParams::kMaxIterLimit, "optimiser sweeps (local) or rounds (global), at most",

@@ -20,6 +20,7 @@ struct Context {
   std::vector<std::uint8_t> dof;             // per point: 0 fixed, 1 edge, 2 face, 3 free
   std::vector<std::uint8_t> cell_valid;      // exact star test, kept current
   std::chrono::steady_clock::time_point start;
+  QualityStats last_stats;                   // of the last record()
   OptimReport* report = nullptr;
   const ProgressFn* progress = nullptr;      // called after each record(); may be null
 

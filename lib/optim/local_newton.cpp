@@ -16,6 +16,7 @@
 #include <cmath>
 
 #include "optim/context.h"
+#include "optim/lagged_objective.h"
 #include "optim/objective.h"
 #include "quality/star_verdict.h"
 
@@ -56,16 +57,19 @@ class VertexNewton {
         for (int i = 0; i < k; ++i) x += t[i] * B[i];
         return x;
       };
-      auto f = [&](const double* t) {
-        const Point3 x = x_of(t);
+      const bool lagged = prm.derivatives == OptimParams::Derivatives::Lagged;
+      if (lagged) lagged_.build(ctx_.stencil, pts, ctx_.V0.data(), prm.metric, p);
+      auto eval = [&](const Point3& x) {
+        if (lagged) return lagged_.value(x, prm.c);
         const double xa[3] = {x.x, x.y, x.z};
         return obj(xa);
       };
+      auto f = [&](const double* t) { return eval(x_of(t)); };
       const double zero[3] = {0, 0, 0};
       double f0;
       Vec g = Vec::Zero();
       Mat H = Mat::Identity();
-      if (prm.derivatives == OptimParams::Derivatives::Analytic) {
+      if (prm.derivatives == OptimParams::Derivatives::Analytic || lagged) {
         f0 = analytic_derivatives(p, B, k, g, H);
       } else {
         f0 = f(zero);
@@ -95,8 +99,7 @@ class VertexNewton {
         for (int i = 0; i < k; ++i) t[i] = alpha * d[i];
         xt = x_of(t);
         if (k < 3) xt = ctx_.bc->project(p, xt, &prim);
-        const double xa[3] = {xt.x, xt.y, xt.z};
-        const double ft = obj(xa);
+        const double ft = eval(xt);
         if (!(ft <= f0 + 1e-4 * alpha * slope)) continue;
         pts[p.idx] = xt;
         ok = keeps_valid(cells);
@@ -129,8 +132,10 @@ class VertexNewton {
   double analytic_derivatives(PointId p, const Vec3* B, int k, Vec& g, Mat& H) const {
     const auto& prm = ctx_.params;
     double gx[3], Hx[9];
-    const double f0 = local_objective_derivatives(ctx_.stencil, ctx_.mesh.points.data(), ctx_.V0.data(),
-                                                  prm.metric, prm.c, p, gx, Hx);
+    const double f0 = prm.derivatives == OptimParams::Derivatives::Lagged
+                          ? lagged_.derivatives(ctx_.mesh.points[p.idx], prm.c, gx, Hx)
+                          : local_objective_derivatives(ctx_.stencil, ctx_.mesh.points.data(), ctx_.V0.data(),
+                                                        prm.metric, prm.c, p, gx, Hx);
     Vec3 HB[3];
     for (int i = 0; i < k; ++i)
       for (int r = 0; r < 3; ++r) HB[i][r] = Hx[3 * r] * B[i][0] + Hx[3 * r + 1] * B[i][1] + Hx[3 * r + 2] * B[i][2];
@@ -220,6 +225,7 @@ class VertexNewton {
 
   Context& ctx_;
   std::vector<Point3> scratch_;
+  LaggedObjective lagged_;  // rebuilt at every Newton step of a Lagged visit
 };
 
 // Independent sets for a parallel Gauss-Seidel: the points of one pass (surface
@@ -283,7 +289,10 @@ void run_local(Context& ctx) {
   // everywhere) and later sweeps follow the settling rule.
   constexpr int kNever = -2;
   std::vector<int> last_change(nc, kNever);
-  int untangle_left = ctx.report->iterations.back().invalid > 0 ? prm.untangle_sweeps : 0;
+  // Method::Untangle: only untangling sweeps, as many as max_iter allows.
+  const bool untangle_only = prm.method == OptimParams::Method::Untangle;
+  int untangle_left = ctx.report->iterations.back().invalid > 0 ? (untangle_only ? prm.max_iter : prm.untangle_sweeps) : 0;
+  if (untangle_only && untangle_left == 0) return;
   bool full_sweep = untangle_left == 0;
   double f_prev = ctx.report->iterations.back().objective;
   for (int sweep = 1; sweep <= prm.max_iter; ++sweep) {
@@ -330,6 +339,7 @@ void run_local(Context& ctx) {
       // The objective test is meaningless while only a few points move.
       --untangle_left;
       if (rec.invalid == 0 || updates == 0) untangle_left = 0;
+      if (untangle_only && untangle_left == 0) break;
       full_sweep = untangle_left == 0;
       f_prev = rec.objective;
       continue;

@@ -56,10 +56,14 @@ void Context::record(int iteration) {
   IterationRecord r;
   r.iteration = iteration;
   r.objective = objective(mesh.points);
-  r.invalid = count_invalid_cells(stencil, mesh.points);
-  const QualityStats st = quality_stats(cell_qualities(stencil, params.metric, mesh.points), params.metric);
-  r.min_quality = st.min;
-  r.mean_quality = st.mean;
+  // cell_valid holds the exact star verdict of every cell at all times (both
+  // schemes re-test every cell whose points they move), so counting it is the
+  // exact count without a second pass of the star test.
+  r.invalid = 0;
+  for (std::uint8_t v : cell_valid) r.invalid += v == 0;
+  last_stats = quality_stats(cell_qualities(stencil, params.metric, mesh.points), params.metric);
+  r.min_quality = last_stats.min;
+  r.mean_quality = last_stats.mean;
   r.seconds = seconds();
   report->iterations.push_back(r);
   if (progress && *progress) {
@@ -86,14 +90,16 @@ OptimReport optimize(PolyMesh& mesh, const ClassifiedTetMesh* primal, const Opti
   optim_detail::Context ctx(mesh, primal, params);
   ctx.report = &rep;
   ctx.progress = &progress;
-  const auto q0 = cell_qualities(ctx.stencil, params.metric, mesh.points);
-  rep.before = quality_stats(q0, params.metric);
+  // Every run ends with a record() of the final state, so its statistics are
+  // the report's "after" (no extra pass over the cells).
   ctx.record(0);
+  rep.before = ctx.last_stats;
   rep.invalid_before = static_cast<int>(rep.iterations.front().invalid);
-  if (params.method == OptimParams::Method::Local) optim_detail::run_local(ctx);
+  if (params.method == OptimParams::Method::Local || params.method == OptimParams::Method::Untangle)
+    optim_detail::run_local(ctx);
   if (params.method == OptimParams::Method::Global) optim_detail::run_global(ctx);
-  rep.after = quality_stats(cell_qualities(ctx.stencil, params.metric, mesh.points), params.metric);
-  rep.invalid_after = static_cast<int>(count_invalid_cells(ctx.stencil, mesh.points));
+  rep.after = ctx.last_stats;
+  rep.invalid_after = static_cast<int>(rep.iterations.back().invalid);
   rep.seconds = ctx.seconds();
   return rep;
 }
@@ -162,7 +168,8 @@ OptimParams::Method parse_method(std::string_view s) {
   if (s == "none") return OptimParams::Method::None;
   if (s == "local") return OptimParams::Method::Local;
   if (s == "global") return OptimParams::Method::Global;
-  throw UsageError("unknown optimisation method '" + std::string(s) + "' (expected none|local|global)");
+  if (s == "untangle") return OptimParams::Method::Untangle;
+  throw UsageError("unknown optimisation method '" + std::string(s) + "' (expected none|untangle|local|global)");
 }
 
 Metric parse_metric(std::string_view s) {
@@ -175,15 +182,27 @@ OptimParams::Derivatives parse_derivatives(std::string_view s) {
   if (s == "fd") return OptimParams::Derivatives::FiniteDifference;
   if (s == "exact") return OptimParams::Derivatives::Exact;
   if (s == "analytic") return OptimParams::Derivatives::Analytic;
-  throw UsageError("unknown derivatives '" + std::string(s) + "' (expected analytic|fd|exact)");
+  if (s == "lagged") return OptimParams::Derivatives::Lagged;
+  throw UsageError("unknown derivatives '" + std::string(s) + "' (expected analytic|lagged|fd|exact)");
 }
 
 const char* method_name(OptimParams::Method m) {
-  return m == OptimParams::Method::None ? "none" : (m == OptimParams::Method::Local ? "local" : "global");
+  switch (m) {
+    case OptimParams::Method::None: return "none";
+    case OptimParams::Method::Local: return "local";
+    case OptimParams::Method::Global: return "global";
+    case OptimParams::Method::Untangle: return "untangle";
+  }
+  return "none";
 }
 const char* derivatives_name(OptimParams::Derivatives d) {
-  return d == OptimParams::Derivatives::Exact ? "exact"
-         : (d == OptimParams::Derivatives::Analytic ? "analytic" : "fd");
+  switch (d) {
+    case OptimParams::Derivatives::Exact: return "exact";
+    case OptimParams::Derivatives::Analytic: return "analytic";
+    case OptimParams::Derivatives::Lagged: return "lagged";
+    case OptimParams::Derivatives::FiniteDifference: return "fd";
+  }
+  return "fd";
 }
 
 }  // namespace polydual

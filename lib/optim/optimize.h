@@ -17,10 +17,13 @@
 namespace polydual {
 
 struct OptimParams {
-  enum class Method : std::uint8_t { None, Local, Global };
-  enum class Derivatives : std::uint8_t { FiniteDifference, Exact, Analytic };
+  enum class Method : std::uint8_t { None, Local, Global, Untangle };
+  enum class Derivatives : std::uint8_t { FiniteDifference, Exact, Analytic, Lagged };
 
-  // Optimiser. Default Local (the paper's scheme).
+  // Optimiser. Default Local (the paper's scheme). Untangle: the local scheme's
+  // untangling sweeps only (points of invalid cells and the growing rings around
+  // the points that moved, same exact validity guarantee), until no cell is
+  // invalid, a sweep moves nothing, or max_iter sweeps; no smoothing sweep.
   Method method = Method::Local;
   // Corner set of the objective and of the reported quality. Default Q1 (the
   // paper found it untangles faster).
@@ -31,7 +34,10 @@ struct OptimParams {
   // FiniteDifference, the paper's reference path (central differences,
   // 1 + 2k + k(k-1) evaluations; `--derivatives fd`). Exact: gradient by
   // ceres::Jet, Hessian by central differences of it. All three minimise the
-  // same objective. Ignored by Global (analytic adjoint gradient).
+  // same objective. Lagged: analytic derivatives of the lagged local objective
+  // (optim/lagged_objective.h: only the corners p enters directly, centres R
+  // and F held for the visit; the line search's decrease test uses it too, the
+  // exact star test the true centres). Ignored by Global (analytic adjoint gradient).
   Derivatives derivatives = Derivatives::Analytic;
   // Local: number of Gauss-Seidel iterations (each = a surface pass then a
   // volume pass). Global: number of rounds (L-BFGS solve, projection, validity
@@ -106,9 +112,9 @@ OptimReport optimize(PolyMesh& mesh, const ClassifiedTetMesh* primal, const Opti
                      const ProgressFn& progress = {});
 
 // CLI parsers; throw UsageError on an unknown value.
-OptimParams::Method parse_method(std::string_view s);             // none|local|global
+OptimParams::Method parse_method(std::string_view s);             // none|untangle|local|global
 Metric parse_metric(std::string_view s);                          // q1|q2
-OptimParams::Derivatives parse_derivatives(std::string_view s);   // analytic|fd|exact
+OptimParams::Derivatives parse_derivatives(std::string_view s);   // analytic|lagged|fd|exact
 const char* method_name(OptimParams::Method m);
 const char* derivatives_name(OptimParams::Derivatives d);
 

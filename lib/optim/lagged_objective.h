@@ -1,0 +1,40 @@
+// The lagged local objective of one point p (issue 14): the corners of p's cells
+// in which p is a corner vertex or an edge end, with the region centres R and
+// face centres F held at their values when the visit starts. Moving p then
+// changes only these corners (4 per face of p under Q1, 3 under Q2, against
+// every corner of every cell of p in LocalObjective), so a visit costs a few
+// dozen corner evaluations. The exact star test of the optimiser still uses the
+// true centres, so the validity guarantee is unchanged; only the Newton model
+// and the line search's decrease test see lagged centres.
+#pragma once
+#include <vector>
+
+#include "quality/corner.h"
+#include "quality/stencil.h"
+
+namespace polydual {
+
+class LaggedObjective {
+ public:
+  // Collects p's direct corners at the current positions pts.
+  void build(const MeshStencil& s, const Point3* pts, const double* V0, Metric m, PointId p);
+  // Sum of kappa_mod over the direct corners with p at x (centres lagged).
+  double value(const Point3& x, double c) const;
+  // The same at p's build position, with gradient g (3) and Hessian H (3x3
+  // row-major) with respect to p. At the build position the value equals the
+  // sum of the same corners of LocalObjective bit for bit.
+  double derivatives(const Point3& x, double c, double g[3], double H[9]) const;
+  std::size_t num_corners() const { return corners_.size(); }
+
+ private:
+  // Corner edges e_i = u_i + a_i x, a_i in {-1, 0, 1}.
+  struct Corner {
+    Point3 u[3];
+    double a[3];
+    double v0;
+  };
+  void add(const Point3* P, const bool* is_p, const Point3& vertex, bool vertex_is_p, double v0);
+  std::vector<Corner> corners_;
+};
+
+}  // namespace polydual
