@@ -21,8 +21,9 @@ import shutil
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-DOMAINS = ["cube", "twomat", "fichera", "fracture"]
-PAPER_FIG = {"cube": "Fig. 7", "twomat": "Fig. 8", "fichera": "Fig. 9", "fracture": "Fig. 10"}
+DOMAINS = ["cube", "twomat", "fichera", "fracture", "network", "fins"]
+PAPER_FIG = {"cube": "Fig. 7", "twomat": "Fig. 8", "fichera": "Fig. 9", "fracture": "Fig. 10",
+             "network": "none, new", "fins": "none, new"}
 # Preferred optimised variant for the figures: the paper's scheme if it ran.
 FIGURE_VARIANTS = ["local_q1_fd", "global_q1"]
 TETOPT_FIGURE_VARIANTS = ["tetopt_local_q1_fd", "tetopt_global_q1"]

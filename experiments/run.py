@@ -30,7 +30,7 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(HERE)
 PY = "/usr/bin/python3"  # Debian's python: VTK, matplotlib, numpy, meshio
-DOMAINS = ["cube", "twomat", "fichera", "fracture"]
+DOMAINS = ["cube", "twomat", "fichera", "fracture", "network", "fins"]
 OPENFOAM_ENV = {"WM_PROJECT_DIR": "/usr/share/openfoam"}
 
 # Converter variants: name -> (input, optimize, metric, derivatives, scope).

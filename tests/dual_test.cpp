@@ -191,15 +191,16 @@ TEST(Dual, KuhnLatticeTwoMaterials) {
 }
 
 TEST(Dual, RandomMeshInvariants) {
-  // 1560 random classified meshes: one region (planar faces: exact volume
+  // 2340 random classified meshes: one region (planar faces: exact volume
   // identity), two regions (jagged interface), with fracture, with two sheets
   // crossing (one ending inside, one reaching the outer boundary), with
-  // construction points, free curves and sheet parts outside the volume, lattice points.
+  // construction points, free curves and sheet parts outside the volume, lattice points,
+  // three crossing sheets, fins on the wall, a notched (concave) box.
   // Each family must exercise what it is there for: interface faces in the
   // two-region meshes, fracture faces (capped on both sides) in the fractured
   // ones, exact merges of cospherical centres in the lattice ones.
-  std::size_t meshes[6] = {0, 0, 0, 0, 0, 0}, interface_meshes = 0, fracture_meshes = 0, merging_meshes = 0,
-              crossing_meshes = 0, unattached_meshes = 0;
+  std::size_t meshes[9] = {}, interface_meshes = 0, fracture_meshes = 0, merging_meshes = 0,
+              crossing_meshes = 0, unattached_meshes = 0, network_meshes = 0, fin_meshes = 0, notch_meshes = 0;
   for (std::uint64_t seed = 1; seed <= 260; ++seed) {
     RandomMeshParams p;
     p.seed = seed;
@@ -245,9 +246,35 @@ TEST(Dual, RandomMeshInvariants) {
     merging_meshes += check_invariants(random_classified_mesh(p), true, "lattice seed " + std::to_string(seed))
                           .merged_points > 0;
     ++meshes[3];
+    p.lattice_points = false;
+    // Three crossing sheets (lines meeting at a point), fins attached to the
+    // wall, a notch with concave model edges and vertex.
+    {
+      RandomMeshParams q = p;
+      q.network = true;
+      network_meshes += check_invariants(random_classified_mesh(q), false, "network seed " + std::to_string(seed))
+                            .fracture_tags >= 3;
+      q = p;
+      q.fins = true;
+      fin_meshes += check_invariants(random_classified_mesh(q), false, "fins seed " + std::to_string(seed))
+                        .fracture_tags >= 2;
+      q = p;
+      q.notch = true;
+      const TetSoup notched = random_classified_mesh(q);
+      // Most of the octant (volume 1/8) is cut away, keeping the mesh manifold.
+      double volume = 0;
+      for (const auto& t : notched.tets) {
+        const Point3 &a = notched.points[t[0]], &b = notched.points[t[1]], &c = notched.points[t[2]],
+                     &d = notched.points[t[3]];
+        volume += dot(b - a, cross(c - a, d - a)) / 6;
+      }
+      notch_meshes += volume < 1 - 0.125 * 0.6;
+      check_invariants(notched, false, "notch seed " + std::to_string(seed));
+    }
+    meshes[6] += 1, meshes[7] += 1, meshes[8] += 1;
     if (HasFailure()) break;
   }
-  for (std::size_t n : meshes) EXPECT_EQ(n, 260u);  // 1560 meshes in all
+  for (std::size_t n : meshes) EXPECT_EQ(n, 260u);  // 2340 meshes in all
   // Every two-region and fractured mesh has its interface/fracture faces;
   // the lattice points make cospherical neighbours in most lattice meshes
   // (177 of the 260 seeds).
@@ -256,6 +283,11 @@ TEST(Dual, RandomMeshInvariants) {
   EXPECT_GE(merging_meshes, 150u);
   EXPECT_GE(crossing_meshes, 200u);
   EXPECT_EQ(unattached_meshes, 260u);
+  EXPECT_GE(network_meshes, 200u);
+  EXPECT_GE(fin_meshes, 200u);
+  EXPECT_GE(notch_meshes, 200u);
+  std::cout << "three crossing sheets " << network_meshes << ", two fins " << fin_meshes
+            << ", notched " << notch_meshes << " (of 260 each)\n";
   std::cout << "meshes with interface faces " << interface_meshes << ", fracture faces " << fracture_meshes
             << ", exact merges " << merging_meshes << ", two crossing sheets " << crossing_meshes
             << ", unattached entities dropped " << unattached_meshes << " (of 260 each)\n";

@@ -18,7 +18,8 @@
 namespace polydual {
 namespace {
 
-constexpr Domain kAll[] = {Domain::Cube, Domain::TwoMat, Domain::Fichera, Domain::Fracture};
+constexpr Domain kAll[] = {Domain::Cube,     Domain::TwoMat,  Domain::Fichera,
+                           Domain::Fracture, Domain::Network, Domain::Fins};
 
 bool same_soup(const TetSoup& a, const TetSoup& b) {
   auto tri_eq = [](const TaggedTriangle& x, const TaggedTriangle& y) {
@@ -54,7 +55,7 @@ TEST(GenerateDomains, NamesRoundTrip) {
     parse_domain("sphere");
     FAIL() << "no UsageError";
   } catch (const UsageError& e) {
-    EXPECT_NE(std::string(e.what()).find("cube|twomat|fichera|fracture"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("cube|twomat|fichera|fracture|network|fins"), std::string::npos);
   }
   EXPECT_THROW(generate_domain(Domain::Cube, 0), UsageError);
 }
@@ -144,6 +145,75 @@ TEST(GenerateDomains, FractureTopology) {
   }
   EXPECT_EQ(free_edges, 3);
   EXPECT_EQ(wall_edges, 1);
+}
+
+// Sheets of a one-region domain: model faces with that region on both sides.
+std::vector<std::int32_t> sheet_faces(const ClassifiedTetMesh& m) {
+  std::vector<std::int32_t> sheets;
+  for (const auto& f : m.model().entities[2])
+    if (f.regions.size() == 2 && f.regions[0] == f.regions[1]) sheets.push_back(f.tag);
+  return sheets;
+}
+std::size_t sheets_bounded(const std::vector<std::int32_t>& bounds, const std::vector<std::int32_t>& sheets) {
+  return static_cast<std::size_t>(std::count_if(bounds.begin(), bounds.end(), [&](std::int32_t t) {
+    return std::find(sheets.begin(), sheets.end(), t) != sheets.end();
+  }));
+}
+
+// The network's three rectangles cross: the x=0.5 one is cut into four faces
+// by the other two, the crossing lines bound three or four sheet faces, and the
+// three crossing lines meet at a model vertex (0.5,0.5,0.5).
+TEST(GenerateDomains, NetworkTopology) {
+  const TetSoup soup = generate_domain(Domain::Network, 2000);
+  ClassifiedTetMesh m = classify(soup);
+  EXPECT_EQ(m.model().count(3), 1u);
+  EXPECT_EQ(m.model().count(2), 12u);
+  EXPECT_EQ(m.model().count(1), 36u);
+  EXPECT_EQ(m.model().count(0), 27u);
+  const auto sheets = sheet_faces(m);
+  EXPECT_EQ(sheets.size(), 6u);
+  int crossing_edges = 0, through_cut_sheet = 0, free_edges = 0, wall_edges = 0;
+  for (const auto& e : m.model().entities[1]) {
+    const std::size_t k = sheets_bounded(e.bounds, sheets);
+    if (k >= 3) ++through_cut_sheet;
+    if (k >= 2) ++crossing_edges;
+    else if (k == 1 && e.bounds.size() == 1) ++free_edges;
+    else if (k == 1) ++wall_edges;
+  }
+  // Crossing segments: z=0.5 with y=0.5 (two pieces either side of the centre),
+  // z=0.5 with x=0.5 (two), y=0.5 with x=0.5 (two); the last four also bound
+  // two pieces of the x=0.5 sheet.
+  EXPECT_EQ(crossing_edges, 6);
+  EXPECT_EQ(through_cut_sheet, 4);
+  EXPECT_EQ(wall_edges, 1);  // the z=0.5 sheet meets the wall x=0
+  EXPECT_GT(free_edges, 0);
+  bool centre = false;
+  for (const TaggedVertex& c : soup.corners) {
+    const auto& p = soup.points[c.v];
+    if (p[0] == 0.5 && p[1] == 0.5 && p[2] == 0.5) centre = true;
+  }
+  EXPECT_TRUE(centre) << "no model vertex where the three crossing lines meet";
+}
+
+// Each fin is one sheet face attached to a wall along one model edge (bounding
+// the fin and the wall) with three free edges bounding only the fin.
+TEST(GenerateDomains, FinsTopology) {
+  ClassifiedTetMesh m = classify(generate_domain(Domain::Fins, 2000));
+  EXPECT_EQ(m.model().count(3), 1u);
+  EXPECT_EQ(m.model().count(2), 9u);
+  EXPECT_EQ(m.model().count(1), 24u);
+  EXPECT_EQ(m.model().count(0), 20u);
+  const auto sheets = sheet_faces(m);
+  ASSERT_EQ(sheets.size(), 3u);
+  for (std::int32_t fin : sheets) {
+    int free_edges = 0, wall_edges = 0;
+    for (const auto& e : m.model().entities[1]) {
+      if (e.bounds == std::vector<std::int32_t>{fin}) ++free_edges;
+      else if (std::count(e.bounds.begin(), e.bounds.end(), fin) == 1) ++wall_edges;
+    }
+    EXPECT_EQ(free_edges, 3) << "fin " << fin;
+    EXPECT_EQ(wall_edges, 1) << "fin " << fin;
+  }
 }
 
 TEST(GenerateDomains, MshWriterIsAtomicAndDeterministic) {

@@ -448,16 +448,39 @@ TEST(Foam, Block8UpperTriangularAndPatches) {
   EXPECT_EQ(r.patches, 6u);
 }
 
-TEST(Foam, SlitFacesAndTheirPointsAreDropped) {
+// A slit face becomes a baffle: two boundary faces of its cell, the loop and its
+// reverse, in the patch of its model face (tag 9), after the six wall patches.
+TEST(Foam, SlitFacesBecomeTwoBoundaryFaces) {
   const fs::path dir = scratch("slit_case");
   const FoamReport r = write_foam(cube_with_slit(), dir.string());
-  EXPECT_EQ(r.dropped_slit_faces, 1u);
-  EXPECT_EQ(r.dropped_points, 4u);
-  EXPECT_EQ(r.points, 8u);
-  EXPECT_EQ(r.faces, 6u);
-  EXPECT_NE(r.to_json().dump(0).find("\"dropped_slit_faces\":1"), std::string::npos)
-      << r.to_json().dump(0);
-  EXPECT_EQ(foam_list(dir / "constant" / "polyMesh" / "points").size(), 8u);
+  const fs::path pm = dir / "constant" / "polyMesh";
+  EXPECT_EQ(r.slit_faces, 1u);
+  EXPECT_EQ(r.dropped_points, 0u);
+  EXPECT_EQ(r.points, 12u);
+  EXPECT_EQ(r.faces, 8u);
+  EXPECT_EQ(r.internal_faces, 0u);
+  EXPECT_EQ(r.patches, 7u);
+  EXPECT_NE(r.to_json().dump(0).find("\"slit_faces\":1"), std::string::npos) << r.to_json().dump(0);
+  EXPECT_EQ(foam_list(pm / "points").size(), 12u);
+  EXPECT_EQ(foam_labels(pm / "owner"), std::vector<long>(8, 0));
+  const auto faces = foam_list(pm / "faces");
+  ASSERT_EQ(faces.size(), 8u);
+  // The last two faces are one loop in both senses, on the four slit points 8..11.
+  auto loop_of = [](const std::string& f) {
+    std::vector<long> v;
+    std::istringstream in(f.substr(2, f.size() - 3));
+    for (long x; in >> x;) v.push_back(x);
+    return v;
+  };
+  const std::vector<long> a = loop_of(faces[6]), b = loop_of(faces[7]);
+  ASSERT_EQ(a.size(), 4u);
+  std::vector<long> sorted = a;
+  std::sort(sorted.begin(), sorted.end());
+  EXPECT_EQ(sorted, (std::vector<long>{8, 9, 10, 11}));
+  EXPECT_EQ(b, std::vector<long>(a.rbegin(), a.rend()));
+  EXPECT_NE(slurp(pm / "boundary").find("face_9\n    {\n        type            patch;\n        nFaces          2;\n"
+                                        "        startFace       6;"),
+            std::string::npos) << slurp(pm / "boundary");
 }
 
 TEST(Foam, SpursAreCutOutOfFaces) {

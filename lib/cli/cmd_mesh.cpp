@@ -16,7 +16,8 @@ namespace polydual::cli {
 
 const CommandSpec kGenerate{
     "generate", "generate DOMAIN --tets N -o FILE",
-    "Generates one of the paper's domains (cube, twomat, fichera, fracture) with Gmsh,\n"
+    "Generates one of the demo domains (the paper's cube, twomat, fichera, fracture; the\n"
+    "fracture network 'network'; the finned box 'fins') with Gmsh,\n"
     "fully classified, deterministic (same N => same mesh). The output format follows\n"
     "FILE's extension: .msh (Gmsh 4.1, written by Gmsh), .mesh, .node, .vtu.",
     1, 1,

@@ -78,7 +78,7 @@ const std::vector<OptionDef> kTable = {
      [](Settings& s, const std::string& v) { s.tets = std::stoll(v); }},
     {"--out", K::Text, "DIR", kNoRange, kNoRange, "output directory",
      [](const Settings& d) { return d.out_dir; }, [](Settings& s, const std::string& v) { s.out_dir = v; }},
-    {"--domains", K::Text, "LIST", kNoRange, kNoRange, "comma-separated subset of cube,twomat,fichera,fracture",
+    {"--domains", K::Text, "LIST", kNoRange, kNoRange, "comma-separated subset of cube,twomat,fichera,fracture,network,fins",
      [](const Settings& d) { return d.domains; }, [](Settings& s, const std::string& v) { s.domains = v; }},
     {"--threads", K::Int, "N", 0, 1024, "worker threads (0: all cores); outputs do not depend on it",
      [](const Settings& d) { return std::to_string(d.threads); },

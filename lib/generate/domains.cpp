@@ -21,7 +21,7 @@ namespace polydual {
 
 namespace {
 
-constexpr const char* kDomainNames[] = {"cube", "twomat", "fichera", "fracture"};
+constexpr const char* kDomainNames[] = {"cube", "twomat", "fichera", "fracture", "network", "fins"};
 static_assert(std::size(kDomainNames) == gmsh_module::kNumDomains);
 
 constexpr std::uint32_t kUnused = std::numeric_limits<std::uint32_t>::max();
@@ -106,7 +106,7 @@ void check_target(std::size_t target) {
 Domain parse_domain(const std::string& name) {
   for (int i = 0; i < gmsh_module::kNumDomains; ++i)
     if (name == kDomainNames[i]) return static_cast<Domain>(i);
-  throw UsageError("unknown domain '" + name + "' (valid: cube|twomat|fichera|fracture)");
+  throw UsageError("unknown domain '" + name + "' (valid: cube|twomat|fichera|fracture|network|fins)");
 }
 
 std::string domain_name(Domain d) { return kDomainNames[static_cast<int>(d)]; }

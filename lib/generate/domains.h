@@ -20,9 +20,18 @@ enum class Domain {
   Fichera,   // [0,1]^3 minus the octant [0.5,1]^3: 3 re-entrant edges, 1 re-entrant corner
   Fracture,  // unit box with an embedded zero-thickness rectangle at z=0.5,
              // x in [0,0.6], y in [0.2,0.8] (touches the wall x=0, has 3 free edges)
+  Network,   // unit box with three mutually crossing rectangles (fracture network):
+             // z=0.5 (x in [0,0.7], y in [0.2,0.8], meets the wall x=0),
+             // y=0.5 (x in [0.3,0.9], z in [0.2,0.8]) and x=0.5 (y in [0.25,0.75],
+             // z in [0.3,0.7]), both ending inside; the three intersection lines
+             // meet at the point (0.5,0.5,0.5)
+  Fins,      // unit box with three fins, zero-thickness rectangles attached to a
+             // wall along a line and ending inside: y=0.5 from x=0 (x in [0,0.4],
+             // z in [0.2,0.8]), z=0.5 from x=1 (x in [0.6,1], y in [0.2,0.8]) and
+             // x=0.5 from y=1 (y in [0.65,1], z in [0.25,0.75])
 };
 
-// "cube" | "twomat" | "fichera" | "fracture"; throws UsageError listing these.
+// "cube" | "twomat" | "fichera" | "fracture" | "network" | "fins"; throws UsageError listing these.
 Domain parse_domain(const std::string& name);
 std::string domain_name(Domain d);
 

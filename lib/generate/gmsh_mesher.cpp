@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <mutex>
 #include <stdexcept>
@@ -21,7 +22,7 @@ namespace polydual {
 
 namespace {
 
-constexpr const char* kNames[] = {"cube", "twomat", "fichera", "fracture"};
+constexpr const char* kNames[] = {"cube", "twomat", "fichera", "fracture", "network", "fins"};
 std::string name_of(Domain d) { return kNames[static_cast<int>(d)]; }
 
 // A failure whose message is already complete (the session's options).
@@ -102,6 +103,8 @@ double domain_volume(Domain d) {
     case Domain::TwoMat: return 2.0;
     case Domain::Fichera: return 1.0 - 0.125;
     case Domain::Fracture: return 1.0;
+    case Domain::Network: return 1.0;
+    case Domain::Fins: return 1.0;
   }
   return 1.0;
 }
@@ -116,6 +119,72 @@ int volume_at(double cx, double cy, double cz) {
     if (std::abs(x - cx) < 1e-9 && std::abs(y - cy) < 1e-9 && std::abs(z - cz) < 1e-9) return tag;
   }
   return -1;
+}
+
+// An axis-aligned rectangle in the plane x[axis] = at, spanning [lo0,hi0] x
+// [lo1,hi1] in the other two coordinates (in increasing axis order).
+struct Sheet {
+  int axis;
+  double at, lo0, hi0, lo1, hi1;
+};
+
+// Fracture network: three rectangles crossing pairwise along lines that meet at
+// (0.5,0.5,0.5); the first meets the wall x=0, the others end inside.
+std::vector<Sheet> network_sheets() {
+  return {{2, 0.5, 0.0, 0.7, 0.2, 0.8}, {1, 0.5, 0.3, 0.9, 0.2, 0.8}, {0, 0.5, 0.25, 0.75, 0.3, 0.7}};
+}
+
+// Fins: three disjoint rectangles, each attached to one wall along a segment.
+std::vector<Sheet> fins_sheets() {
+  return {{1, 0.5, 0.0, 0.4, 0.2, 0.8}, {2, 0.5, 0.6, 1.0, 0.2, 0.8}, {0, 0.5, 0.65, 1.0, 0.25, 0.75}};
+}
+
+// Unit box fragmented by the sheets: the mesh becomes conformal to every sheet
+// and to their intersections, and the box stays one region.
+void embed_sheets(const std::vector<Sheet>& sheets) {
+  namespace occ = gmsh::model::occ;
+  const int box = occ::addBox(0, 0, 0, 1, 1, 1, 1);
+  gmsh::vectorpair tools;
+  for (const Sheet& s : sheets) {
+    // addRectangle lies in z = const; rotate it into the sheet's plane.
+    int r = 0;
+    if (s.axis == 2) {
+      r = occ::addRectangle(s.lo0, s.lo1, s.at, s.hi0 - s.lo0, s.hi1 - s.lo1);
+    } else if (s.axis == 1) {
+      // (x, z) rectangle: draw in the xy plane at y=0 and rotate about x by +90
+      // degrees, which maps (x, y, 0) to (x, 0, y).
+      r = occ::addRectangle(s.lo0, s.lo1, 0, s.hi0 - s.lo0, s.hi1 - s.lo1);
+      occ::rotate({{2, r}}, 0, 0, 0, 1, 0, 0, M_PI / 2);
+      occ::translate({{2, r}}, 0, s.at, 0);
+    } else {
+      // (y, z) rectangle: draw as (y, z) in the xy plane, rotate about x (to
+      // (a, 0, b)) and then about z by +90 degrees (to (0, a, b)).
+      r = occ::addRectangle(s.lo0, s.lo1, 0, s.hi0 - s.lo0, s.hi1 - s.lo1);
+      occ::rotate({{2, r}}, 0, 0, 0, 1, 0, 0, M_PI / 2);
+      occ::rotate({{2, r}}, 0, 0, 0, 0, 0, 1, M_PI / 2);
+      occ::translate({{2, r}}, s.at, 0, 0);
+    }
+    tools.push_back({2, r});
+  }
+  gmsh::vectorpair out;
+  std::vector<gmsh::vectorpair> out_map;
+  occ::fragment({{3, box}}, tools, out, out_map);
+  occ::synchronize();
+}
+
+// Model surfaces each construction must produce (the network's crossing lines
+// cut the sheet x=0.5 into four faces; the other two stay one face each, with
+// the crossing segments as curves embedded in them: 1 + 1 + 4 sheet faces).
+std::size_t expected_surfaces(Domain d) {
+  switch (d) {
+    case Domain::Cube: return 6;
+    case Domain::TwoMat: return 11;
+    case Domain::Fichera: return 9;
+    case Domain::Fracture: return 7;
+    case Domain::Network: return 6 + 6;
+    case Domain::Fins: return 6 + 3;
+  }
+  return 0;
 }
 
 // Builds the CAD of domain d in the OCC kernel and synchronises the model.
@@ -157,23 +226,26 @@ void build_geometry(Domain d) {
       occ::synchronize();
       break;
     }
+    case Domain::Network:
+    case Domain::Fins:
+      embed_sheets(d == Domain::Network ? network_sheets() : fins_sheets());
+      break;
   }
   gmsh::vectorpair vols, faces;
   gmsh::model::getEntities(vols, 3);
   gmsh::model::getEntities(faces, 2);
   const std::size_t want_vols = d == Domain::TwoMat ? 2 : 1;
-  const std::size_t want_faces =
-      d == Domain::Cube ? 6 : d == Domain::TwoMat ? 11 : d == Domain::Fichera ? 9 : 7;
+  const std::size_t want_faces = expected_surfaces(d);
   if (vols.size() != want_vols || faces.size() != want_faces)
     throw std::logic_error(name_of(d) + ": unexpected CAD topology (" +
                            std::to_string(vols.size()) + " volumes, " +
                            std::to_string(faces.size()) + " surfaces)");
-  if (d == Domain::Fracture) {
-    // The rectangle must be inside the volume (embedded), not on its boundary.
+  if (d == Domain::Fracture || d == Domain::Network || d == Domain::Fins) {
+    // The sheets must be inside the volume (embedded), not on its boundary.
     gmsh::vectorpair bnd;
     gmsh::model::getBoundary(vols, bnd, false, false, false);
     if (bnd.size() != 6)
-      throw std::logic_error("fracture: the rectangle was not embedded in the volume");
+      throw std::logic_error(name_of(d) + ": the sheets were not embedded in the volume");
   }
 }
 

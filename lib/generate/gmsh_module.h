@@ -16,10 +16,10 @@
 namespace polydual::gmsh_module {
 
 // Bump whenever GmshApi, RawMesh or the meaning of a domain number changes.
-inline constexpr int kAbiVersion = 1;
+inline constexpr int kAbiVersion = 2;
 
 // The domains by number (generate/domains.h's Domain, in its order).
-inline constexpr int kNumDomains = 4;
+inline constexpr int kNumDomains = 6;
 
 // A Gmsh mesh as Gmsh gives it: nodes with their tags and coordinates, and
 // the elements of each model entity, entities sorted by (dim, tag).

@@ -49,6 +49,100 @@ Point3 centroid(const std::vector<Point3>& pts, const std::array<std::uint32_t, 
   return (pts[t[0]] + pts[t[1]] + pts[t[2]] + pts[t[3]]) / 4.0;
 }
 
+// Tag of the sheet triangle between two tets of one region with centroids ga
+// and gb, or 0 if it is on no sheet (RandomMeshParams: fracture, crossing_sheet,
+// network, fins). The first sheet that claims a triangle wins.
+std::int32_t sheet_tag(const RandomMeshParams& p, const Point3& ga, const Point3& gb) {
+  auto across = [&](int axis, double at) { return (ga[axis] < at) != (gb[axis] < at); };
+  auto both_in = [&](int axis, double lo, double hi) {
+    return ga[axis] > lo && ga[axis] < hi && gb[axis] > lo && gb[axis] < hi;
+  };
+  const bool fracture = p.fracture || p.network, crossing = p.crossing_sheet || p.network;
+  if (fracture && both_in(0, -1, 0.6) && across(2, 0.5)) return kRandomFractureTag;
+  if (fracture && crossing && both_in(0, 0.3, 2) && across(1, 0.5)) return kRandomFractureTag + 1;
+  if (p.network && both_in(1, 0.2, 0.8) && both_in(2, 0.2, 0.8) && across(0, 0.5)) return kRandomFractureTag + 4;
+  if (p.fins && both_in(0, -1, 0.35) && both_in(2, 0.25, 0.75) && across(1, 0.5)) return kRandomFractureTag + 2;
+  if (p.fins && both_in(0, 0.65, 2) && both_in(1, 0.25, 0.75) && across(2, 0.5)) return kRandomFractureTag + 3;
+  return 0;
+}
+
+bool in_notch(const Point3& g) { return g.x > 0.5 && g.y > 0.5 && g.z > 0.5; }
+
+// Number of face-connected groups among `star` (tets sharing 3 vertices are
+// neighbours); star is the set of kept tets around one vertex or edge.
+std::size_t star_components(const TetSoup& soup, const std::vector<std::uint32_t>& star) {
+  std::vector<std::size_t> group(star.size());
+  for (std::size_t i = 0; i < star.size(); ++i) group[i] = i;
+  auto root = [&](std::size_t i) {
+    while (group[i] != i) i = group[i] = group[group[i]];
+    return i;
+  };
+  for (std::size_t i = 0; i < star.size(); ++i)
+    for (std::size_t j = i + 1; j < star.size(); ++j) {
+      int shared = 0;
+      for (auto a : soup.tets[star[i]])
+        shared += static_cast<int>(std::count(soup.tets[star[j]].begin(), soup.tets[star[j]].end(), a));
+      if (shared == 3) group[root(i)] = root(j);
+    }
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < star.size(); ++i) n += root(i) == i;
+  return n;
+}
+
+// The centroid test cuts a Delaunay mesh that does not conform to the notch
+// planes, so the kept tets can touch across the notch at a lone vertex or edge
+// (a non-manifold domain). Such tets are put back, around every vertex and edge
+// whose kept star falls apart, until none does (monotone, so it ends).
+void keep_notch_manifold(const TetSoup& soup, std::vector<bool>& removed) {
+  std::vector<std::vector<std::uint32_t>> tets_of(soup.points.size());
+  for (std::uint32_t t = 0; t < soup.tets.size(); ++t)
+    for (auto v : soup.tets[t]) tets_of[v].push_back(t);
+  auto kept_star = [&](std::uint32_t v, std::uint32_t w) {  // w == kNoIndex: vertex star
+    std::vector<std::uint32_t> star;
+    for (auto t : tets_of[v])
+      if (!removed[t] && (w == kNoIndex || std::count(soup.tets[t].begin(), soup.tets[t].end(), w)))
+        star.push_back(t);
+    return star;
+  };
+  auto restore = [&](std::uint32_t v, std::uint32_t w) {
+    for (auto t : tets_of[v])
+      if (w == kNoIndex || std::count(soup.tets[t].begin(), soup.tets[t].end(), w)) removed[t] = false;
+  };
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (std::uint32_t v = 0; v < soup.points.size(); ++v) {
+      if (star_components(soup, kept_star(v, kNoIndex)) > 1) restore(v, kNoIndex), changed = true;
+      for (auto t : tets_of[v])
+        for (auto w : soup.tets[t])
+          if (w > v && star_components(soup, kept_star(v, w)) > 1) restore(v, w), changed = true;
+    }
+  }
+}
+
+// Drops the tets in `removed` and the points no remaining tet uses, renumbering
+// the rest in order; sheet triangles on dropped tets were never listed.
+void remove_tets(TetSoup& soup, const std::vector<bool>& removed) {
+  std::vector<std::uint32_t> new_id(soup.points.size(), kNoIndex);
+  std::vector<std::array<std::uint32_t, 4>> tets;
+  std::vector<std::int32_t> regions;
+  for (std::size_t t = 0; t < soup.tets.size(); ++t) {
+    if (removed[t]) continue;
+    tets.push_back(soup.tets[t]);
+    regions.push_back(soup.tet_region[t]);
+    for (auto v : soup.tets[t]) new_id[v] = 0;
+  }
+  std::vector<Point3> points;
+  for (std::size_t v = 0; v < soup.points.size(); ++v)
+    if (new_id[v] == 0) new_id[v] = static_cast<std::uint32_t>(points.size()), points.push_back(soup.points[v]);
+  for (auto& t : tets)
+    for (auto& v : t) v = new_id[v];
+  for (auto& f : soup.triangles)
+    for (auto& v : f.v) v = new_id[v];
+  soup.points = std::move(points);
+  soup.tets = std::move(tets);
+  soup.tet_region = std::move(regions);
+}
+
 }  // namespace
 
 namespace {
@@ -79,6 +173,9 @@ TetSoup random_classified_mesh(const RandomMeshParams& params) {
   std::vector<Point3> input;
   for (int k = 0; k < 8; ++k)
     input.push_back({double(k & 1), double((k >> 1) & 1), double((k >> 2) & 1)});
+  if (params.notch)  // the notch's corners, so its edges can be in the mesh
+    for (int k = 0; k < 7; ++k)
+      input.push_back({k & 1 ? 1.0 : 0.5, k & 2 ? 1.0 : 0.5, k & 4 ? 1.0 : 0.5});
   std::mt19937_64 rng(params.seed);
   for (int i = 0; i < params.num_points; ++i) {
     Point3 p{open_unit(rng()), open_unit(rng()), open_unit(rng())};
@@ -115,7 +212,12 @@ TetSoup random_classified_mesh(const RandomMeshParams& params) {
     soup.tet_region.push_back(params.regions == 2 && g.x >= 0.5 ? 2 : 1);
   }
 
-  if (params.fracture) {
+  std::vector<bool> removed(soup.tets.size(), false);
+  if (params.notch) {
+    for (std::size_t t = 0; t < soup.tets.size(); ++t) removed[t] = in_notch(centroid(soup.points, soup.tets[t]));
+    keep_notch_manifold(soup, removed);
+  }
+  if (params.fracture || params.network || params.fins) {
     for (std::uint32_t a = 0; a < cells.size(); ++a) {
       const Point3 ga = centroid(soup.points, soup.tets[a]);
       for (int i = 0; i < 4; ++i) {
@@ -123,18 +225,18 @@ TetSoup random_classified_mesh(const RandomMeshParams& params) {
         if (dt.is_infinite(nb)) continue;
         const std::uint32_t b = cell_id.at(nb);
         if (b < a || soup.tet_region[a] != soup.tet_region[b]) continue;  // each pair once
-        const Point3 gb = centroid(soup.points, soup.tets[b]);
-        const bool first = ga.x < 0.6 && gb.x < 0.6 && ((ga.z < 0.5) != (gb.z < 0.5));
-        const bool second = params.crossing_sheet && ga.x > 0.3 && gb.x > 0.3 && ((ga.y < 0.5) != (gb.y < 0.5));
-        if (!first && !second) continue;
+        if (removed[a] || removed[b]) continue;
+        const std::int32_t tag = sheet_tag(params, ga, centroid(soup.points, soup.tets[b]));
+        if (tag == 0) continue;
         TaggedTriangle f;
         for (int k = 0, j = 0; k < 4; ++k)
           if (k != i) f.v[j++] = cells[a]->vertex(k)->info();
-        f.tag = first ? kRandomFractureTag : kRandomFractureTag + 1;  // one tag per triangle
+        f.tag = tag;
         soup.triangles.push_back(f);
       }
     }
   }
+  if (params.notch) remove_tets(soup, removed);
   if (params.unattached) add_unattached(soup, params.fracture);
   return soup;
 }

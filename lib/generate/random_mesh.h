@@ -25,6 +25,22 @@ struct RandomMeshParams {
   // crosses the first sheet along a line, ends inside at x ~ 0.3 and reaches
   // the outer boundary at x = 1. Needs fracture.
   bool crossing_sheet = false;
+  // Fracture network: the two sheets above (fracture and crossing_sheet are
+  // implied) and a third one (tag kRandomFractureTag + 4) between tets whose
+  // centroids lie on opposite sides of x = 0.5 with y and z in (0.2, 0.8): it
+  // crosses both along lines, the three lines meet near (0.5, 0.5, 0.5), and it
+  // ends inside on all four sides.
+  bool network = false;
+  // Two fins attached to the outer wall along a line and ending inside: tag
+  // kRandomFractureTag + 2 across y = 0.5 for x < 0.35, z in (0.25, 0.75)
+  // (attached to x = 0); tag kRandomFractureTag + 3 across z = 0.5 for x > 0.65,
+  // y in (0.25, 0.75) (attached to x = 1).
+  bool fins = false;
+  // Concave model corners: tets whose centroids lie in the octant x, y, z > 0.5
+  // are removed (a Fichera-like notch; unused points are dropped), so the outer
+  // boundary has re-entrant edges and a re-entrant vertex. With fracture sheets
+  // the sheets inside the notch go with their tets.
+  bool notch = false;
   // Adds what real files carry beside the tets (io/unattached.h): three points
   // above the box used by no tet, a construction point (corner, tag
   // kRandomUnattachedTag) on one of them, a free curve and a free sheet

@@ -24,7 +24,7 @@ Json FoamReport::to_json() const {
   j.set("patches", patches);
   j.set("cell_zones", cell_zones);
   j.set("face_zones", face_zones);
-  j.set("dropped_slit_faces", dropped_slit_faces);
+  j.set("slit_faces", slit_faces);
   j.set("dropped_points", dropped_points);
   j.set("faces_without_spurs", faces_without_spurs);
   j.set("dropped_degenerate_faces", dropped_degenerate_faces);
@@ -94,13 +94,26 @@ FoamCase build_case(const PolyMesh& m, FoamReport& report) {
     const CellId o = m.face_owner[f], n = m.face_neighbour[f];
     if (!o.valid() && !n.valid())
       throw InputError("<memory>", "face " + std::to_string(f), "belongs to no cell");
-    if (o == n) { ++report.dropped_slit_faces; continue; }
     OutFace out;
     out.source = FaceId(f);
     out.loop = without_spurs(m.face(FaceId(f)));
     if (out.loop.size() < 3) { ++report.dropped_degenerate_faces; continue; }
     if (out.loop.size() != m.face(FaceId(f)).size()) ++report.faces_without_spurs;
-    if (o.valid() && n.valid()) {
+    if (o == n) {
+      // A slit face: both sides bound the same cell, so it is written as a
+      // baffle, two boundary faces of that cell (the loop, outward for the
+      // PolyMesh side 0, and its reverse for side 1) in the patch of its model
+      // face. Each of the cell's two half-faces then has its own face and the
+      // cell is closed in OpenFOAM's sense.
+      ++report.slit_faces;
+      out.owner = o.idx;
+      OutFace back = out;
+      back.flipped = true;
+      std::reverse(back.loop.begin(), back.loop.end());
+      auto& patch = boundary[{0, m.face_tag[f]}];
+      patch.push_back(std::move(out));
+      patch.push_back(std::move(back));
+    } else if (o.valid() && n.valid()) {
       out.flipped = o > n;
       out.owner = std::min(o, n).idx;
       out.neighbour = std::max(o, n).idx;

@@ -10,13 +10,17 @@
 //    flipped (loop reversed);
 //  - internal faces first, in upper-triangular order (by owner, then neighbour;
 //    ties by PolyMesh face id), then boundary faces grouped by patch;
-//  - one patch per external model face tag, "face_<tag>", increasing tag order;
+//  - one patch per external model face tag (and per model face tag holding slit
+//    faces), "face_<tag>", increasing tag order;
 //    boundary faces that are not FaceKind::External (should not happen in a valid
 //    dual) go to a last patch "defaultFaces";
-//  - a slit face (owner == neighbour, at fracture tips) has no OpenFOAM form: it
-//    is dropped (its cell lists it twice in opposite senses, so the cell stays
-//    closed), and points used only by dropped faces are dropped too (checkMesh
-//    fails on unused points);
+//  - a slit face (owner == neighbour, at fracture tips; its cell lists it twice
+//    in opposite senses) has no internal-face form: it is written as a baffle,
+//    two boundary faces owned by the cell (the loop and its reverse), in the
+//    patch "face_<tag>" of its model face tag, so every half-face of the cell
+//    has its own face and the case is closed;
+//  - points used only by dropped faces are dropped too (checkMesh fails on
+//    unused points);
 //  - OpenFOAM rejects a face that repeats a point: spurs "a b a" (zero area,
 //    e.g. a cap passing twice through a model-edge midpoint) are cut out of the
 //    loop, and a face left with < 3 points is dropped (both counted);
@@ -48,7 +52,7 @@ struct FoamOptions {
 struct FoamReport {
   std::size_t points = 0, cells = 0, faces = 0, internal_faces = 0;
   std::size_t patches = 0, cell_zones = 0, face_zones = 0;
-  std::size_t dropped_slit_faces = 0;  // owner == neighbour faces left out
+  std::size_t slit_faces = 0;          // owner == neighbour faces, each written twice
   std::size_t dropped_points = 0;      // points used only by dropped faces / spurs
   std::size_t faces_without_spurs = 0;       // faces written with spurs removed
   std::size_t dropped_degenerate_faces = 0;  // faces that were nothing but spurs

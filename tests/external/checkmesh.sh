@@ -18,7 +18,7 @@ fi
 export WM_PROJECT_DIR=/usr/share/openfoam
 
 status=0
-for d in cube twomat fichera fracture; do
+for d in cube twomat fichera fracture network fins; do
   case_dir="$out/${d}_case"
   log="$out/${d}_checkMesh.log"
   rm -rf "$case_dir" "$log"

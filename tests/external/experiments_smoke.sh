@@ -27,7 +27,7 @@ for t in meshes optimisers timing derivatives tetopt peer; do
     echo "experiments_smoke: table $t has no rows" >&2; status=1
   fi
 done
-for d in cube twomat fichera fracture; do
+for d in cube twomat fichera fracture network fins; do
   need "$out/records/${d}_2000_none.json"
   need "$out/records/${d}_2000_peer_polyDualMesh.json"
   for p in a_tets b_initial_cut c_optimised_cut d_optimised; do

@@ -1,0 +1,69 @@
+"""Tabulates the checkMesh logs of experiments/checkmesh_compare.sh.
+
+usage: checkmesh_table.py LOG_DIR TETS  (prints Markdown on stdout)
+
+Reads LOG_DIR/<domain>_<variant>.log for the variants polydual, pdm
+(polyDualMesh) and pdm_concave (polyDualMesh -concaveMultiCells), as written by
+checkMesh -allTopology -allGeometry (OpenFOAM v1912 wording). A check that
+passed prints no count, so its count is 0.
+"""
+import os
+import re
+import sys
+
+DOMAINS = ["cube", "twomat", "fichera", "fracture", "network", "fins"]
+VARIANTS = [("polydual", "polydual"), ("pdm", "polyDualMesh"), ("pdm_concave", "polyDualMesh -concaveMultiCells")]
+
+
+def first(pattern, text, default="0"):
+    m = re.search(pattern, text, re.M)
+    return m.group(1) if m else default
+
+
+def parse(text):
+    if "Checking geometry..." not in text:
+        return None
+    return {
+        "cells": first(r"^\s+cells:\s+(\d+)", text, "?"),
+        "negative": first(r"Number of negative volume cells:\s*(\d+)", text),
+        "face_tets": first(r"Error in face pyramids:\s*(\d+) faces", text),
+        "low_tets": first(r"Error in face tets:\s*(\d+) faces", text),
+        "concave": first(r"Concave cells \(using face planes\) found, number of cells:\s*(\d+)", text),
+        "nonorth_max": first(r"Mesh non-orthogonality Max:\s*([-\d.eE+]+)", text, "?"),
+        "nonorth_mean": first(r"Mesh non-orthogonality Max:\s*[-\d.eE+]+\s+average:\s*([-\d.eE+]+)", text, "?"),
+        "skew_max": first(r"Max skewness = ([-\d.eE+]+)", text, "?"),
+        "errors": "0" if "Mesh OK." in text else first(r"Failed (\d+) mesh checks", text, "?"),
+    }
+
+
+def fmt(v):
+    try:
+        return f"{float(v):.3g}" if "." in v or "e" in v else v
+    except ValueError:
+        return v
+
+
+def main(log_dir, tets):
+    print(f"checkMesh -allTopology -allGeometry on the domains at ~{tets} tets "
+          "(experiments/checkmesh_compare.sh; logs in experiments/checkmesh/).\n")
+    print("| domain | mesh | cells | negative volumes | incorrectly oriented face pyramids | "
+          "faces with bad decomposition tets (face tets) | concave cells | "
+          "non-orthogonality max | non-orthogonality mean | skewness max | failed checks |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    for d in DOMAINS:
+        for key, label in VARIANTS:
+            path = os.path.join(log_dir, f"{d}_{key}.log")
+            if not os.path.exists(path):
+                continue
+            r = parse(open(path, errors="replace").read())
+            if r is None:
+                print(f"| {d} | {label} | checkMesh did not reach the geometry checks | | | | | | | | |")
+                continue
+            print(f"| {d} | {label} | {r['cells']} | {r['negative']} | {r['face_tets']} | {r['low_tets']} | {r['concave']} | "
+                  f"{fmt(r['nonorth_max'])} | {fmt(r['nonorth_mean'])} | {fmt(r['skew_max'])} | {r['errors']} |")
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 3:
+        sys.exit(__doc__)
+    main(sys.argv[1], sys.argv[2])
