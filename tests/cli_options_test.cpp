@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "run_command.h"
+#include "split/split.h"
 
 #include <array>
 #include <cstdio>
@@ -394,11 +395,31 @@ TEST(CliOptions, ForceAndOutputGuard) {
   EXPECT_TRUE(fs::exists(in));
 }
 
-TEST(CliOptions, SplitStageOnlyWhenAsked) {
-  const std::string off = convert_json("--optimize none", "s_off.vtu");
-  const std::string on = convert_json("--optimize none --split", "s_on.vtu");
+TEST(CliOptions, SplitByDefaultNoSplitRoundsAndRequireValid) {
+  const std::string off = convert_json("--optimize none --no-split", "s_off.vtu");
+  const std::string on = convert_json("--optimize none", "s_on.vtu");
+  const std::string zero = convert_json("--optimize none --split-rounds 0", "s_zero.vtu");
   ASSERT_GT(jnum(off, "d['invalid_after']"), 0);
   EXPECT_EQ(jq(off, "'split' in d['seconds']['stages']"), "False");
+  EXPECT_EQ(jq(off, "d['split'] is None"), "True");
   EXPECT_EQ(jq(on, "'split' in d['seconds']['stages']"), "True");
-  EXPECT_LE(jnum(on, "d['invalid_after']"), jnum(off, "d['invalid_after']"));
+  EXPECT_LT(jnum(on, "d['invalid_after']"), jnum(off, "d['invalid_after']"));
+  EXPECT_EQ(jnum(on, "d['split']['cells_split']['still_invalid']"), jnum(on, "d['invalid_after']"));
+  // No rounds: the first dual as it is (no free edge in this mesh).
+  EXPECT_EQ(jnum(zero, "len(d['split']['rounds'])"), 0);
+  EXPECT_EQ(jnum(zero, "d['invalid_after']"), jnum(off, "d['invalid_after']"));
+  EXPECT_EQ(run("convert " + meshes().msh.string() + " -o " + (scratch_root() / "s_bad.vtu").string() +
+                " --split-rounds " + std::to_string(polydual::SplitParams::kMaxRounds + 1))
+                .code,
+            2);
+  // --require-valid: exit 1, every invalid cell named, nothing written.
+  const fs::path out = scratch_root() / "s_req.vtu";
+  const CmdResult r = run("convert " + meshes().msh.string() + " -o " + out.string() +
+                          " --optimize none --no-split --require-valid");
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_NE(r.err.find("remain invalid"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("class dim"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_EQ(run("convert " + meshes().msh.string() + " -o " + out.string() + " --require-valid").code, 0);
+  EXPECT_TRUE(fs::exists(out));
 }

@@ -56,6 +56,7 @@ TEST(Pipeline, ConvertIsTheCompositionOfTheStages) {
   const TetSoup soup = test_soup();
   PipelineParams params;
   params.optim.method = OptimParams::Method::None;
+  params.split.enabled = false;  // the split loop: tests/split_pipeline_test.cpp
   std::vector<std::string> observed;
   const ConvertResult r = convert(soup, params, ConvertHooks{[&](const StageRecord& s) { observed.push_back(s.name); }, {}});
   EXPECT_EQ(stage_names(r.report), (std::vector<std::string>{"classify", "dual", "cleanup", "cells", "check"}));

@@ -133,17 +133,35 @@ Json split_causes(const ConvertResult& r, const SplitState& st) {
 }
 
 // The rounds of the split loop after the first optimised dual (split/split.h).
+// A round may leave more invalid cells than the one before (new points in the
+// neighbours' faces, a warm start that no longer fits): the mesh with the
+// fewest invalid cells is kept (the earliest among equals), so the split
+// never makes the result worse (proofs/split.md, T2).
 void run_split(ConvertResult& r, SplitState& st, const PipelineParams& params, const ConvertHooks& hooks) {
   run_stage(r.report, hooks, "split", [&](Json& stats) {
     Json rounds = Json::array();
+    PolyMesh best_mesh = r.mesh;
+    CheckResult best_check = r.check;
+    VertexCuts best_cuts = st.cuts;
+    int best_round = 0;
     for (int k = 0; k < params.split.max_rounds && r.check.invalid_cells > 0; ++k) {
       throw_if_interrupted();
       if (!escalate(st, r.primal, r.mesh, r.check)) break;
       rounds.push(split_round(r, st, params, hooks));
+      if (r.check.invalid_cells < best_check.invalid_cells) {
+        best_mesh = r.mesh;
+        best_check = r.check;
+        best_cuts = st.cuts;
+        best_round = k + 1;
+      }
     }
+    r.mesh = std::move(best_mesh);
+    r.check = std::move(best_check);
+    st.cuts = std::move(best_cuts);
     if (!st.cuts.empty()) r.mesh.cell_origin = cut_cell_origins(r.primal, st.cuts, r.mesh);
     stats = Json::object();
     stats.set("rounds", rounds);
+    stats.set("kept_round", best_round);
     stats.set("free_edge_vertices", st.free_edge.num_vertices_cut());
     stats.set("vertices_cut", st.cuts.num_vertices_cut());
     stats.set("cells_split", split_causes(r, st));
