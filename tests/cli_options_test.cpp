@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "run_command.h"
+#include "split/split.h"
 
 #include <array>
 #include <cstdio>
@@ -235,11 +236,11 @@ TEST(CliOptions, JsonOrText) {
   EXPECT_THAT(text.out, Not(HasSubstr("\"invalid_before\"")));
   const std::string json = convert_json("--optimize none", "j.vtu");
   EXPECT_EQ(jq(json, "d['output']['format']"), "vtu");
-  EXPECT_EQ(jq(json, "sorted(d['seconds'].keys()) == sorted(['read', 'classify', 'dual', 'star_test', 'write', "
+  EXPECT_EQ(jq(json, "sorted(d['seconds'].keys()) == sorted(['read', 'classify', 'cuts', 'dual', 'star_test', 'split', 'check_split', 'write', "
                      "'total', 'stages'])"),
             "True");
   EXPECT_EQ(jq(json, "list(d['seconds']['stages'].keys())"),
-            "['read', 'classify', 'dual', 'cleanup', 'cells', 'check', 'write']");
+            "['read', 'classify', 'cuts', 'dual', 'cleanup', 'cells', 'check', 'split', 'check_split', 'write']");
   CmdResult chk = run("check " + out + " --json");
   ASSERT_EQ(chk.code, 0) << chk.err;
   EXPECT_EQ(jnum(chk.out, "d['cells']"), jnum(json, "d['cells']"));
@@ -397,11 +398,33 @@ TEST(CliOptions, ForceAndOutputGuard) {
   EXPECT_TRUE(fs::exists(in));
 }
 
-TEST(CliOptions, SplitStageOnlyWhenAsked) {
-  const std::string off = convert_json("--optimize none", "s_off.vtu");
-  const std::string on = convert_json("--optimize none --split", "s_on.vtu");
+TEST(CliOptions, SplitByDefaultNoSplitRoundsAndRequireValid) {
+  const std::string off = convert_json("--optimize none --no-split", "s_off.vtu");
+  const std::string on = convert_json("--optimize none", "s_on.vtu");
+  const std::string zero = convert_json("--optimize none --split-rounds 0", "s_zero.vtu");
   ASSERT_GT(jnum(off, "d['invalid_after']"), 0);
   EXPECT_EQ(jq(off, "'split' in d['seconds']['stages']"), "False");
+  EXPECT_EQ(jq(off, "d['split'] is None"), "True");
   EXPECT_EQ(jq(on, "'split' in d['seconds']['stages']"), "True");
+  // Rounds ran; the loop keeps its best round, never worse than no split here.
+  EXPECT_GT(jnum(on, "len(d['split']['rounds'])"), 0);
   EXPECT_LE(jnum(on, "d['invalid_after']"), jnum(off, "d['invalid_after']"));
+  EXPECT_EQ(jnum(on, "d['split']['cells_split']['still_invalid']"), jnum(on, "d['invalid_after']"));
+  // No rounds: the first dual as it is (no free edge in this mesh).
+  EXPECT_EQ(jnum(zero, "len(d['split']['rounds'])"), 0);
+  EXPECT_EQ(jnum(zero, "d['invalid_after']"), jnum(off, "d['invalid_after']"));
+  EXPECT_EQ(run("convert " + meshes().msh.string() + " -o " + (scratch_root() / "s_bad.vtu").string() +
+                " --split-rounds " + std::to_string(polydual::SplitParams::kMaxRounds + 1))
+                .code,
+            2);
+  // --require-valid: exit 1, every invalid cell named, nothing written.
+  const fs::path out = scratch_root() / "s_req.vtu";
+  const CmdResult r = run("convert " + meshes().msh.string() + " -o " + out.string() +
+                          " --optimize none --no-split --require-valid");
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_NE(r.err.find("remain invalid"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("class dim"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_EQ(run("convert " + meshes().msh.string() + " -o " + out.string() + " --require-valid").code, 0);
+  EXPECT_TRUE(fs::exists(out));
 }

@@ -56,6 +56,7 @@ TEST(Pipeline, ConvertIsTheCompositionOfTheStages) {
   const TetSoup soup = test_soup();
   PipelineParams params;
   params.optim.method = OptimParams::Method::None;
+  params.split.enabled = false;  // the split loop: tests/split_pipeline_test.cpp
   std::vector<std::string> observed;
   const ConvertResult r = convert(soup, params, ConvertHooks{[&](const StageRecord& s) { observed.push_back(s.name); }, {}});
   EXPECT_EQ(stage_names(r.report), (std::vector<std::string>{"classify", "dual", "cleanup", "cells", "check"}));
@@ -84,7 +85,8 @@ TEST(Pipeline, OptimiseStageRunsAndIsChecked) {
   PipelineParams params;
   params.optim.max_iter = 3;
   const ConvertResult r = convert(soup, params);
-  EXPECT_EQ(stage_names(r.report), (std::vector<std::string>{"classify", "dual", "cleanup", "cells", "check", "optimize", "check_after"}));
+  EXPECT_EQ(stage_names(r.report), (std::vector<std::string>{"classify", "cuts", "dual", "cleanup", "cells", "check", "optimize",
+                                                           "check_after", "split", "check_split"}));
   ASSERT_NE(r.report.stage("optimize"), nullptr);
   EXPECT_NE(r.report.stage("optimize")->stats.find("iterations"), nullptr);
   // The final check is of the optimised mesh.
@@ -131,7 +133,8 @@ TEST(Pipeline, ConvertFileReadsAndWrites) {
   PipelineParams params;
   params.optim.method = OptimParams::Method::None;
   const ConvertResult r = convert_file(in, (d / "c.vtu").string(), PolyFormat::Vtu, params);
-  EXPECT_EQ(stage_names(r.report), (std::vector<std::string>{"read", "classify", "dual", "cleanup", "cells", "check", "write"}));
+  EXPECT_EQ(stage_names(r.report), (std::vector<std::string>{"read", "classify", "cuts", "dual", "cleanup", "cells", "check",
+                                                           "split", "check_split", "write"}));
   EXPECT_EQ(r.written.find("format")->dump(0), "\"vtu\"");
   const PolyMesh back = read_vtu_poly((d / "c.vtu").string());
   EXPECT_EQ(back.num_cells(), r.mesh.num_cells());

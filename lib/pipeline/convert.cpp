@@ -1,10 +1,15 @@
 #include "pipeline/convert.h"
 
+#include <algorithm>
+
+#include "core/error.h"
 #include "core/interrupt.h"
 #include "core/stopwatch.h"
 #include "io/output_guard.h"
 #include "io/read_tet_mesh.h"
+#include "split/cuts.h"
 #include "split/split.h"
+#include "split/warm_start.h"
 
 namespace polydual {
 
@@ -23,28 +28,143 @@ auto run_stage(ConvertReport& report, const ConvertHooks& hooks, const char* nam
 }
 
 
-// The split stage (split/split.h) on every cell still invalid, with the counts
-// by cause (class of the primal vertex, slit cell), then the check again.
-void run_split(ConvertResult& r, const SplitParams& params, const ConvertHooks& hooks) {
+// Algorithm 1 as three stages (design §4): the draft (steps 1-7 and the
+// cleanup's hints), the cleanup (§2.8), the cells (step 8); cuts may be null.
+PolyMesh run_dual_stages(ConvertResult& r, const PipelineParams& params, const ConvertHooks& hooks,
+                         const VertexCuts* cuts) {
+  DualStats dual_stats;
+  DualDraft draft = run_stage(r.report, hooks, "dual", [&](Json& stats) {
+    DualDraft d = build_dual_draft(r.primal, params.dual, &dual_stats, cuts);
+    stats = dual_stats.to_json();
+    return d;
+  });
+  run_stage(r.report, hooks, "cleanup", [&](Json& stats) {
+    stats = cleanup_dual(draft).to_json();
+    return 0;
+  });
+  return run_stage(r.report, hooks, "cells", [&](Json& stats) {
+    PolyMesh pm = assemble_cells(std::move(draft));
+    stats = Json::object();
+    stats.set("cells", pm.num_cells());
+    return pm;
+  });
+}
+
+// Internal vertex id of each input vertex id (invalid: a dropped input point).
+std::vector<VertexId> internal_of_input(const ClassifiedTetMesh& m) {
+  std::uint32_t n = 0;
+  for (std::size_t v = 0; v < m.num_vertices(); ++v) n = std::max(n, m.input_vertex(VertexId(v)) + 1);
+  std::vector<VertexId> out(n, VertexId::invalid());
+  for (std::size_t v = 0; v < m.num_vertices(); ++v) out[m.input_vertex(VertexId(v))] = VertexId(v);
+  return out;
+}
+
+// State of the split loop (split/split.h): per primal vertex (internal
+// numbering) its escalation level (0: free-edge cuts or none, 1: plane cuts,
+// 2: fallback) and the cause it was first cut for.
+struct SplitState {
+  VertexCuts free_edge, cuts;  // cuts: the union used by the current dual
+  std::vector<std::uint8_t> level;
+  std::vector<CutCause> cause;
+  std::vector<VertexId> internal_of_input;  // cell_primal (input numbering) -> internal
+};
+
+// Raises the level of every vertex of an invalid cell below the fallback;
+// false when none could be raised.
+bool escalate(SplitState& st, const ClassifiedTetMesh& m, const PolyMesh& mesh, const CheckResult& check) {
+  bool raised = false;
+  for (std::size_t c = 0; c < check.verdicts.size(); ++c) {
+    if (check.verdicts[c].valid) continue;
+    const VertexId v = st.internal_of_input[mesh.cell_primal[c].idx];
+    if (st.level[v.idx] >= 2) continue;
+    ++st.level[v.idx];
+    if (st.cause[v.idx] == CutCause::None) st.cause[v.idx] = invalid_cause(m, v);
+    raised = true;
+  }
+  return raised;
+}
+
+// The union of the free-edge cuts and the cuts of every raised vertex.
+VertexCuts union_of_cuts(const SplitState& st, const ClassifiedTetMesh& m) {
+  std::vector<VertexId> plane, fallback;
+  for (std::size_t v = 0; v < st.level.size(); ++v) {
+    if (st.level[v] == 1) plane.push_back(VertexId(v));
+    if (st.level[v] == 2) fallback.push_back(VertexId(v));
+  }
+  const VertexCuts a = VertexCuts::merged(m.num_vertices(), st.free_edge, plane_cuts(m, plane));
+  return VertexCuts::merged(m.num_vertices(), a, fallback_cuts(m, fallback));
+}
+
+// One round: rebuild with the union of cuts, warm start from r.mesh,
+// optimise, check (verdicts only). Returns the round's record.
+Json split_round(ConvertResult& r, SplitState& st, const PipelineParams& params, const ConvertHooks& hooks) {
+  st.cuts = union_of_cuts(st, r.primal);
+  PolyMesh fresh = build_dual(r.primal, params.dual, nullptr, &st.cuts);
+  Json j = Json::object();
+  j.set("vertices_cut", st.cuts.num_vertices_cut());
+  j.set("cells", fresh.num_cells());
+  j.set("points_warm_started", warm_start(fresh, r.mesh));
+  if (params.optim.method != OptimParams::Method::None)
+    j.set("optimize", optimize(fresh, &r.primal, params.optim, hooks.progress).to_json());
+  r.mesh = std::move(fresh);
+  r.check = check_mesh(r.mesh, &r.primal, false);
+  j.set("invalid_after", r.check.invalid_cells);
+  return j;
+}
+
+// Cells of the uncut dual that were split, by the cause of their vertex; and
+// the cells still invalid.
+Json split_causes(const ConvertResult& r, const SplitState& st) {
+  std::size_t n[6] = {0, 0, 0, 0, 0, 0};
+  std::vector<char> seen(r.mesh.cell_origin.size(), 0);
+  for (std::size_t c = 0; c < r.mesh.cell_origin.size(); ++c) {
+    const CellId o = r.mesh.cell_origin[c];
+    const VertexId v = st.internal_of_input[r.mesh.cell_primal[c].idx];
+    if (o.idx >= seen.size() || seen[o.idx] || st.cuts.of(v).empty()) continue;
+    seen[o.idx] = 1;
+    ++n[int(st.cause[v.idx])];
+  }
+  Json j = Json::object();
+  for (CutCause k : {CutCause::FreeEdge, CutCause::SheetCrossing, CutCause::ConcaveEdge, CutCause::ConcaveVertex,
+                     CutCause::Other})
+    j.set(cut_cause_name(k), n[int(k)]);
+  j.set("still_invalid", r.check.invalid_cells);
+  return j;
+}
+
+// The rounds of the split loop after the first optimised dual (split/split.h).
+// A round may leave more invalid cells than the one before (new points in the
+// neighbours' faces, a warm start that no longer fits): the mesh with the
+// fewest invalid cells is kept (the earliest among equals), so the split
+// never makes the result worse (proofs/split.md, T2).
+void run_split(ConvertResult& r, SplitState& st, const PipelineParams& params, const ConvertHooks& hooks) {
   run_stage(r.report, hooks, "split", [&](Json& stats) {
-    constexpr const char* kClass[4] = {"model_vertex", "model_edge", "model_face", "interior"};
-    std::vector<CellId> cells;
-    std::size_t by_class[4] = {0, 0, 0, 0}, slit = 0;
-    for (std::size_t c = 0; c < r.check.verdicts.size(); ++c) {
-      if (r.check.verdicts[c].valid) continue;
-      cells.push_back(CellId(c));
-      const int dim = r.primal.vertex_class(r.mesh.cell_primal[c]).dim;
-      ++by_class[dim >= 0 && dim <= 3 ? dim : 3];
-      bool is_slit = false;
-      for (HalfFace h : r.mesh.cell(CellId(c)))
-        is_slit |= r.mesh.face_owner[h.face().idx] == r.mesh.face_neighbour[h.face().idx];
-      slit += is_slit;
+    Json rounds = Json::array();
+    PolyMesh best_mesh = r.mesh;
+    CheckResult best_check = r.check;
+    VertexCuts best_cuts = st.cuts;
+    int best_round = 0;
+    for (int k = 0; k < params.split.max_rounds && r.check.invalid_cells > 0; ++k) {
+      throw_if_interrupted();
+      if (!escalate(st, r.primal, r.mesh, r.check)) break;
+      rounds.push(split_round(r, st, params, hooks));
+      if (r.check.invalid_cells < best_check.invalid_cells) {
+        best_mesh = r.mesh;
+        best_check = r.check;
+        best_cuts = st.cuts;
+        best_round = k + 1;
+      }
     }
-    stats = split_cells(r.mesh, cells, params).to_json();
-    Json by = Json::object();
-    for (int k = 0; k < 4; ++k) by.set(kClass[k], by_class[k]);
-    stats.set("invalid_by_class", by);
-    stats.set("slit_cells", slit);
+    r.mesh = std::move(best_mesh);
+    r.check = std::move(best_check);
+    st.cuts = std::move(best_cuts);
+    if (!st.cuts.empty()) r.mesh.cell_origin = cut_cell_origins(r.primal, st.cuts, r.mesh);
+    stats = Json::object();
+    stats.set("rounds", rounds);
+    stats.set("kept_round", best_round);
+    stats.set("free_edge_vertices", st.free_edge.num_vertices_cut());
+    stats.set("vertices_cut", st.cuts.num_vertices_cut());
+    stats.set("cells_split", split_causes(r, st));
     return 0;
   });
   r.check = run_stage(r.report, hooks, "check_split", [&](Json& stats) {
@@ -53,6 +173,22 @@ void run_split(ConvertResult& r, const SplitParams& params, const ConvertHooks& 
     stats.set("invalid_after", c.invalid_cells);
     return c;
   });
+}
+
+// --require-valid: every cell still invalid, with its primal vertex (input
+// numbering) and its classification, as one InputError.
+void require_valid(const ConvertResult& r) {
+  if (r.check.invalid_cells == 0) return;
+  std::string what = std::to_string(r.check.invalid_cells) + " cells remain invalid after the split:";
+  const std::vector<VertexId> internal = internal_of_input(r.primal);
+  for (std::size_t c = 0; c < r.check.verdicts.size(); ++c) {
+    if (r.check.verdicts[c].valid) continue;
+    const VertexId in = r.mesh.cell_primal[c];
+    const ModelRef cls = r.primal.vertex_class(internal[in.idx]);
+    what += " cell " + std::to_string(c) + " (vertex " + std::to_string(in.idx) + ", class dim " +
+            std::to_string(cls.dim) + " tag " + std::to_string(cls.tag) + ");";
+  }
+  throw InputError(r.primal.source(), "", what);
 }
 
 // The stages from classify to the final check, appended to r.report.
@@ -68,24 +204,22 @@ void run_pipeline(ConvertResult& r, const TetSoup& soup, const PipelineParams& p
   });
   // What the classification completed (an incomplete given classification).
   for (const std::string& w : r.primal.classification_warnings()) r.warnings.push_back(w);
-  // Algorithm 1 as three stages (design §4): the draft (steps 1-7 and the
-  // cleanup's hints), the cleanup (§2.8), the cells (step 8).
-  DualStats dual_stats;
-  DualDraft draft = run_stage(rep, hooks, "dual", [&](Json& stats) {
-    DualDraft d = build_dual_draft(r.primal, params.dual, &dual_stats);
-    stats = dual_stats.to_json();
-    return d;
-  });
-  run_stage(rep, hooks, "cleanup", [&](Json& stats) {
-    stats = cleanup_dual(draft).to_json();
-    return 0;
-  });
-  r.mesh = run_stage(rep, hooks, "cells", [&](Json& stats) {
-    PolyMesh pm = assemble_cells(std::move(draft));
-    stats = Json::object();
-    stats.set("cells", pm.num_cells());
-    return pm;
-  });
+  SplitState st;
+  if (params.split.enabled) {
+    st.free_edge = run_stage(rep, hooks, "cuts", [&](Json& stats) {
+      VertexCuts c = free_edge_cuts(r.primal);
+      stats = Json::object();
+      stats.set("free_edge_vertices", c.num_vertices_cut());
+      return c;
+    });
+    st.cuts = st.free_edge;
+    st.level.assign(r.primal.num_vertices(), 0);
+    st.cause.assign(r.primal.num_vertices(), CutCause::None);
+    for (std::size_t v = 0; v < st.level.size(); ++v)
+      if (!st.free_edge.of(VertexId(v)).empty()) st.cause[v] = CutCause::FreeEdge;
+    st.internal_of_input = internal_of_input(r.primal);
+  }
+  r.mesh = run_dual_stages(r, params, hooks, st.free_edge.empty() ? nullptr : &st.free_edge);
   const bool optimise = params.optim.method != OptimParams::Method::None;
   // Validation is topological and the optimiser moves points only: it runs
   // once, on the mesh that is returned.
@@ -106,8 +240,9 @@ void run_pipeline(ConvertResult& r, const TetSoup& soup, const PipelineParams& p
       return c;
     });
   }
-  if (params.split.enabled && r.check.invalid_cells > 0) run_split(r, params.split, hooks);
+  if (params.split.enabled) run_split(r, st, params, hooks);
   rep.invalid_after = r.check.invalid_cells;
+  if (params.split.require_valid) require_valid(r);
 }
 
 }  // namespace

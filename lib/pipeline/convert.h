@@ -1,9 +1,10 @@
 // The library entry of polydual: the paper's pipeline as explicit stages
 // (docs/design.md, "Pipeline"):
-//   classify (§2.1, design §3) -> [tet pre-optimisation: planned] -> build dual
+//   classify (§2.1, design §3) -> free-edge cuts (split/cuts.h) -> build dual
 //   (Algorithm 1 steps 1-7) -> cleanup (§2.8) -> cells (step 8) -> check
-//   (exact star test, §3.1) -> optimise (§3.3) -> check -> split of the cells
-//   still invalid (split/split.h) -> check.
+//   (exact star test, §3.1) -> optimise (§3.3) -> check -> split rounds for
+//   the cells still invalid (split/split.h) -> check. --no-split: no cuts,
+//   no split stages.
 // Each stage takes its own params struct and leaves a StageRecord (name,
 // seconds, stats) in the report. Nothing here prints or exits; the command,
 // the experiments, the benchmarks and other programs call these entries.

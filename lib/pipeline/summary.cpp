@@ -216,6 +216,9 @@ Json convert_summary(const ConvertResult& r, const PipelineParams& params) {
   j.set("dual", dual_summary(r.report));
   const StageRecord* opt = r.report.stage("optimize");
   j.set("optimize", opt ? opt->stats : Json());
+  // The split loop (split/split.h): cells split by cause, rounds; null with --no-split.
+  const StageRecord* split = r.report.stage("split");
+  j.set("split", split ? split->stats : Json());
   j.set("params", params.to_json());
   j.set("seconds", seconds_summary(r.report));
   return j;

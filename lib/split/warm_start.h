@@ -1,0 +1,25 @@
+// What a dual rebuilt with more cuts (split/split.h) inherits from the
+// previous one.
+#pragma once
+#include <cstddef>
+#include <vector>
+
+#include "dual/vertex_cuts.h"
+#include "mesh/classified_tet_mesh.h"
+#include "mesh/poly_mesh.h"
+
+namespace polydual {
+
+// Moves every point of `fresh` whose primal origin (PolyMesh::point_origin)
+// names exactly one point of `old` to that point's position; new points and
+// origins shared by several old points keep their initial positions. Returns
+// the number of points moved. Both meshes must carry point_origin (else 0).
+std::size_t warm_start(PolyMesh& fresh, const PolyMesh& old);
+
+// cell_origin of a dual built with `cuts`: for each cell, the cell of the dual
+// without cuts that holds the same tets of the same primal vertex (each cut
+// side lies in one uncut side). Empty if mesh's cells are not the sides of
+// (m, cuts) (a mesh that was not built from m).
+std::vector<CellId> cut_cell_origins(const ClassifiedTetMesh& m, const VertexCuts& cuts, const PolyMesh& mesh);
+
+}  // namespace polydual
