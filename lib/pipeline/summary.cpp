@@ -216,6 +216,7 @@ Json convert_summary(const ConvertResult& r, const PipelineParams& params) {
   j.set("dual", dual_summary(r.report));
   const StageRecord* opt = r.report.stage("optimize");
   j.set("optimize", opt ? opt->stats : Json());
+  if (const StageRecord* tet = r.report.stage("optimize_tets")) j.set("optimize_tets", tet->stats);
   j.set("params", params.to_json());
   j.set("seconds", seconds_summary(r.report));
   return j;
