@@ -64,6 +64,13 @@ const std::vector<OptionDef> kTable = {
      "(certified valid, no smoothing), or none",
      [](const Settings& d) { return std::string(method_name(d.params.optim.method)); },
      [](Settings& s, const std::string& v) { s.params.optim.method = parse_method(v); }},
+    {"--optimize-tets", K::Flag, "", kNoRange, kNoRange,
+     "optimise the condition number of the input tets before the dual (paper section 4; boundary vertices stay on "
+     "their model faces and edges, no tet is inverted)",
+     nullptr, [](Settings& s, const std::string&) { s.params.tetopt.enabled = true; }},
+    {"--tet-sweeps", K::Int, "N", 0, TetOptParams::kMaxSweeps, "sweeps of the tet optimisation, at most",
+     [](const Settings& d) { return std::to_string(d.params.tetopt.max_sweeps); },
+     [](Settings& s, const std::string& v) { s.params.tetopt.max_sweeps = std::stoi(v); }},
     {"--metric", K::Choice, "q1|q2", kNoRange, kNoRange, "corner set of the optimiser's objective and quality",
      [](const Settings& d) { return std::string(d.params.optim.metric == Metric::Q1 ? "q1" : "q2"); },
      [](Settings& s, const std::string& v) { s.params.optim.metric = parse_metric(v); }},

@@ -15,15 +15,21 @@
 // no way to re-centre frames), we solve in rounds: each round runs L-BFGS for a
 // fixed number of iterations from t = 0, then projects boundary points onto the
 // facetisation (walking, boundary.h) and re-centres their frames. Validity: a
-// round's move is damped by halving (x = project(o + alpha B t)) until no cell
-// that was valid before the round is invalid (exact test) and the objective did
-// not increase; if no alpha works the run stops. So, like the local scheme, the
-// global scheme never turns a valid cell invalid.
+// round's move x = project(o + alpha B t) is checked cell by cell (exact
+// test); the points of every cell that was valid before the round and is not
+// now are frozen (put back where the round started) and the cells around them
+// re-checked, until no valid cell is invalid: one bad region no longer throws
+// away the whole round's progress. The move is then damped by halving alpha
+// (the freezing redone) while the objective increased; if no alpha works the
+// run stops. So, like the local scheme, the global scheme never turns a valid
+// cell invalid. It stops on the local scheme's criterion, a relative decrease
+// of the objective below tol after a round (the local: after a sweep).
 #include <ceres/gradient_problem.h>
 #include <ceres/gradient_problem_solver.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "optim/context.h"
@@ -96,6 +102,98 @@ class GlobalObjective final : public ceres::FirstOrderFunction {
 
 }  // namespace
 
+namespace {
+
+// Point -> cells (CSR over the stencil's cell points).
+struct PointCells {
+  std::vector<std::uint32_t> off, cells;
+  explicit PointCells(const MeshStencil& s, std::size_t num_points) : off(num_points + 1, 0) {
+    for (PointId p : s.cell_pts) ++off[p.idx + 1];
+    for (std::size_t p = 0; p < num_points; ++p) off[p + 1] += off[p];
+    cells.resize(s.cell_pts.size());
+    std::vector<std::uint32_t> fill(off.begin(), off.end() - 1);
+    for (std::uint32_t c = 0; c < s.num_cells(); ++c)
+      for (PointId p : s.points_of(c)) cells[fill[p.idx]++] = c;
+  }
+};
+
+// Exact star verdict of the given cells into valid_now.
+void check_cells(Context& ctx, const std::vector<std::uint32_t>& cells, std::vector<std::uint8_t>& valid_now) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells.size(), 256), [&](const auto& r) {
+    std::vector<Point3> scratch;
+    for (std::size_t i = r.begin(); i != r.end(); ++i)
+      valid_now[cells[i]] = star_shaped_verdict(ctx.stencil, cells[i], ctx.mesh.points, true, scratch).valid;
+  });
+}
+
+// Puts back (to `before`) every point of the cells that were valid and are not
+// now, re-checks the cells around them, and repeats until no valid cell is
+// invalid (at the latest when all their points are back: those cells are then
+// as before the round). Serial decisions over sorted lists: deterministic.
+// Returns the number of points frozen.
+std::size_t freeze_invalidating_points(Context& ctx, const PointCells& pc, const std::vector<Point3>& before,
+                                       std::vector<std::uint8_t>& valid_now, std::vector<std::uint8_t>& frozen) {
+  const std::size_t nc = ctx.mesh.num_cells();
+  std::vector<std::uint32_t> bad;
+  for (std::uint32_t c = 0; c < nc; ++c)
+    if (ctx.cell_valid[c] && !valid_now[c]) bad.push_back(c);
+  std::size_t count = 0;
+  std::vector<std::uint32_t> recheck;
+  std::vector<std::uint8_t> mark(nc, 0);
+  while (!bad.empty()) {
+    recheck.clear();
+    for (std::uint32_t c : bad)
+      for (PointId p : ctx.stencil.points_of(c)) {
+        if (frozen[p.idx] || ctx.mesh.points[p.idx] == before[p.idx]) continue;
+        frozen[p.idx] = 1;
+        ++count;
+        ctx.mesh.points[p.idx] = before[p.idx];
+        for (std::uint32_t a = pc.off[p.idx]; a < pc.off[p.idx + 1]; ++a)
+          if (!mark[pc.cells[a]]) { mark[pc.cells[a]] = 1; recheck.push_back(pc.cells[a]); }
+      }
+    std::sort(recheck.begin(), recheck.end());
+    check_cells(ctx, recheck, valid_now);
+    bad.clear();
+    for (std::uint32_t c : recheck) {
+      mark[c] = 0;
+      if (ctx.cell_valid[c] && !valid_now[c]) bad.push_back(c);
+    }
+  }
+  return count;
+}
+
+// One L-BFGS solve of the round from t = 0.
+std::vector<double> solve_round(const Context& ctx, const Frames& fr) {
+  std::vector<double> t(fr.off.back(), 0.0);
+  ceres::GradientProblem problem(new GlobalObjective(ctx, fr));  // takes ownership
+  ceres::GradientProblemSolver::Options opt;
+  opt.line_search_direction_type = ceres::LBFGS;
+  opt.max_num_iterations = ctx.params.global_iterations_per_round;
+  opt.logging_type = ceres::SILENT;
+  opt.minimizer_progress_to_stdout = false;
+  opt.function_tolerance = 1e-12;
+  opt.parameter_tolerance = 1e-12;
+  ceres::GradientProblemSolver::Summary sum;
+  ceres::Solve(opt, problem, t.data(), &sum);
+  return t;
+}
+
+// Places every free point at project(o + alpha B t), its primitive into prim.
+void place_points(Context& ctx, const Frames& fr, const std::vector<double>& t, double alpha,
+                  std::vector<std::uint32_t>& prim) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, fr.free.size(), 512), [&](const auto& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const PointId p = fr.free[i];
+      Point3 x = fr.origin[i];
+      for (std::uint32_t j = fr.off[i]; j < fr.off[i + 1]; ++j) x += (alpha * t[j]) * fr.basis[i][j - fr.off[i]];
+      if (ctx.dof[p.idx] < 3) x = ctx.bc->project(p, x, &prim[i]);
+      ctx.mesh.points[p.idx] = x;
+    }
+  });
+}
+
+}  // namespace
+
 void run_global(Context& ctx) {
   const auto& prm = ctx.params;
   Frames fr;
@@ -109,49 +207,29 @@ void run_global(Context& ctx) {
   fr.origin.resize(fr.free.size());
   fr.basis.resize(fr.free.size());
   const std::size_t nc = ctx.mesh.num_cells();
+  const PointCells pc(ctx.stencil, ctx.mesh.num_points());
+  std::vector<std::uint32_t> all_cells(nc);
+  for (std::uint32_t c = 0; c < nc; ++c) all_cells[c] = c;
   std::vector<Point3> before;
   std::vector<std::uint32_t> prim(fr.free.size());
-  std::vector<std::uint8_t> valid_now(nc);
+  std::vector<std::uint8_t> valid_now(nc), frozen(ctx.mesh.num_points());
   double f_prev = ctx.report->iterations.back().objective;
   for (int round = 1; round <= prm.max_iter; ++round) {
     for (std::size_t i = 0; i < fr.free.size(); ++i) {
       fr.origin[i] = ctx.mesh.points[fr.free[i].idx];
       ctx.basis(fr.free[i], fr.basis[i].data());
     }
-    std::vector<double> t(fr.off.back(), 0.0);
-    {
-      ceres::GradientProblem problem(new GlobalObjective(ctx, fr));  // takes ownership
-      ceres::GradientProblemSolver::Options opt;
-      opt.line_search_direction_type = ceres::LBFGS;
-      opt.max_num_iterations = prm.global_iterations_per_round;
-      opt.logging_type = ceres::SILENT;
-      opt.minimizer_progress_to_stdout = false;
-      opt.function_tolerance = 1e-12;
-      opt.parameter_tolerance = 1e-12;
-      ceres::GradientProblemSolver::Summary sum;
-      ceres::Solve(opt, problem, t.data(), &sum);
-    }
-    // Damped, projected acceptance of the round's move.
+    const std::vector<double> t = solve_round(ctx, fr);
+    // Projected move, points of newly invalid cells frozen, damped on an increase.
     before = ctx.mesh.points;
     bool accepted = false;
     double alpha = 1.0;
     for (int hv = 0; hv <= prm.max_halvings && !accepted; ++hv, alpha *= 0.5) {
-      for (std::size_t i = 0; i < fr.free.size(); ++i) {
-        const PointId p = fr.free[i];
-        Point3 x = fr.origin[i];
-        for (std::uint32_t j = fr.off[i]; j < fr.off[i + 1]; ++j) x += (alpha * t[j]) * fr.basis[i][j - fr.off[i]];
-        if (ctx.dof[p.idx] < 3) x = ctx.bc->project(p, x, &prim[i]);
-        ctx.mesh.points[p.idx] = x;
-      }
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nc, 256), [&](const auto& r) {
-        std::vector<Point3> scratch;
-        for (std::size_t c = r.begin(); c != r.end(); ++c)
-          valid_now[c] = star_shaped_verdict(ctx.stencil, static_cast<std::uint32_t>(c), ctx.mesh.points,
-                                             true, scratch).valid;
-      });
-      bool ok = true;
-      for (std::size_t c = 0; c < nc && ok; ++c) ok = !ctx.cell_valid[c] || valid_now[c];
-      accepted = ok && ctx.objective(ctx.mesh.points) <= f_prev;
+      place_points(ctx, fr, t, alpha, prim);
+      std::fill(frozen.begin(), frozen.end(), 0);
+      check_cells(ctx, all_cells, valid_now);
+      freeze_invalidating_points(ctx, pc, before, valid_now, frozen);
+      accepted = ctx.mesh.points != before && ctx.objective(ctx.mesh.points) <= f_prev;
     }
     if (!accepted) {
       ctx.mesh.points = before;
@@ -159,6 +237,7 @@ void run_global(Context& ctx) {
     }
     for (std::size_t i = 0; i < fr.free.size(); ++i) {
       const PointId p = fr.free[i];
+      if (frozen[p.idx]) continue;
       if (ctx.dof[p.idx] < 3) ctx.bc->commit(p, prim[i]);
       if (!(ctx.mesh.points[p.idx] == before[p.idx])) ++ctx.report->vertex_updates;
     }

@@ -202,6 +202,8 @@ void run_pipeline(ConvertResult& r, const TetSoup& soup, const PipelineParams& p
     stats = st.to_json();
     return m;
   });
+  if (params.tetopt.enabled)
+    run_stage(rep, hooks, "optimize_tets", [&](Json& stats) { stats = optimize_tets(r.primal, params.tetopt).to_json(); return 0; });
   // What the classification completed (an incomplete given classification).
   for (const std::string& w : r.primal.classification_warnings()) r.warnings.push_back(w);
   SplitState st;

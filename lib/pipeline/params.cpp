@@ -6,6 +6,7 @@ namespace polydual {
 
 void PipelineParams::validate() const {
   classify.validate();
+  tetopt.validate();
   dual.validate();
   optim.validate();
   split.validate();
@@ -25,6 +26,7 @@ Json PipelineParams::to_json() const {
   j.set("dual_params", dual.to_json());
   j.set("optimizer", optim.to_json());
   j.set("split", split.to_json());
+  j.set("tet_optimizer", tetopt.to_json());
   return j;
 }
 

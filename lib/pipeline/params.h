@@ -7,12 +7,14 @@
 #include "core/json.h"
 #include "dual/build_dual.h"
 #include "optim/optimize.h"
+#include "optim/tet_optimize.h"
 #include "split/split.h"
 
 namespace polydual {
 
 struct PipelineParams {
   ClassifyParams classify;  // feature angle of the inference
+  TetOptParams tetopt;      // kappa optimisation of the input tets (enabled = false skips the stage)
   DualParams dual;          // Algorithm 1 and its cleanup
   OptimParams optim;        // untangling and smoothing (method None skips the stage)
   SplitParams split;        // split of the cells still invalid (enabled = false skips the stage)

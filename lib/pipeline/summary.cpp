@@ -3,6 +3,7 @@
 #include <map>
 
 #include "core/error.h"
+#include "quality/flatness.h"
 
 namespace polydual {
 
@@ -183,6 +184,7 @@ Json mesh_summary(const PolyMesh& pm, const CheckResult& check, const Classified
   // primal's (design §10; double sums within a relative tolerance).
   j.set("geometry_ok", rep.geometry_ok());
   j.set("volume_mismatches", volume_mismatches_json(rep.volume_mismatches));
+  j.set("face_flatness", flatness_stats(pm).to_json());
   return j;
 }
 
@@ -202,7 +204,7 @@ Json convert_summary(const ConvertResult& r, const PipelineParams& params) {
   Json mesh = mesh_summary(r.mesh, r.check, &r.primal);
   for (const char* k : {"cells", "faces", "points", "invalid_cells", "closed_cells", "slit_cells", "face_errors",
                         "negative_volume_cells", "materials", "missing_model_entities", "topology_ok",
-                        "geometry_ok", "volume_mismatches", "invalid_by_class", "invalid_where"})
+                        "geometry_ok", "volume_mismatches", "invalid_by_class", "invalid_where", "face_flatness"})
     if (const Json* v = mesh.find(k)) j.set(k, *v);
   j.set("invalid_before", r.report.invalid_before);
   j.set("invalid_after", r.report.invalid_after);
@@ -219,6 +221,7 @@ Json convert_summary(const ConvertResult& r, const PipelineParams& params) {
   // The split loop (split/split.h): cells split by cause, rounds; null with --no-split.
   const StageRecord* split = r.report.stage("split");
   j.set("split", split ? split->stats : Json());
+  if (const StageRecord* tet = r.report.stage("optimize_tets")) j.set("optimize_tets", tet->stats);
   j.set("params", params.to_json());
   j.set("seconds", seconds_summary(r.report));
   return j;

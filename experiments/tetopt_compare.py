@@ -1,0 +1,215 @@
+#!/usr/bin/python3
+"""Records and tabulates polydual's own tet pre-optimisation (`convert
+--optimize-tets`, issue 15 part 1) and the local against the global optimiser
+(issue 15 part 3), per domain and size.
+
+    /usr/bin/python3 experiments/tetopt_compare.py [--polydual build/polydual]
+        [--out results_tetopt] [--sizes 20000,100000] [--domains cube,...]
+        [--variants none,local,global,tetopt_none,tetopt_local,tetopt_global]
+        [--paper] [--force]
+
+STEP 1 generates each domain with `polydual generate`; STEP 2 converts every
+variant with `polydual convert --json` and records the command, its wall time
+and the JSON summary in OUT/records/<domain>_<size>_<variant>.json (a record
+for the same command is reused unless --force); STEP 3 renders Markdown tables
+from the records only into OUT/tables/, and with --paper into
+paper/tetopt_tables.md. Run with Debian's /usr/bin/python3.
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+REPO = os.path.dirname(HERE)
+DOMAINS = ["cube", "twomat", "fichera", "fracture"]
+# variant -> extra convert options
+VARIANTS = {
+    "none": ["--optimize", "none"],
+    "local": ["--optimize", "local"],
+    "global": ["--optimize", "global"],
+    "tetopt_none": ["--optimize-tets", "--optimize", "none"],
+    "tetopt_local": ["--optimize-tets", "--optimize", "local"],
+    "tetopt_global": ["--optimize-tets", "--optimize", "global"],
+}
+
+
+def write_json(path, obj):
+    tmp = path + ".tmp"
+    with open(tmp, "w") as f:
+        json.dump(obj, f, indent=1, sort_keys=True)
+        f.write("\n")
+    os.replace(tmp, path)
+
+
+def run_step(record, cmd, force, parse_json):
+    """Runs cmd unless `record` holds the same command; returns the record."""
+    if not force and os.path.exists(record):
+        with open(record) as f:
+            rec = json.load(f)
+        if rec.get("command") == cmd:
+            return rec
+    start = time.monotonic()
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    rec = {"command": cmd, "returncode": p.returncode, "wall_seconds": time.monotonic() - start}
+    if p.returncode != 0:
+        rec["stderr"] = p.stderr[-4000:]
+    elif parse_json:
+        rec["summary"] = json.loads(p.stdout)
+    write_json(record, rec)
+    return rec
+
+
+def measure(args):
+    rec_dir = os.path.join(args.out, "records")
+    mesh_dir = os.path.join(args.out, "meshes")
+    os.makedirs(rec_dir, exist_ok=True)
+    os.makedirs(mesh_dir, exist_ok=True)
+    for size in args.sizes:
+        for d in args.domains:
+            msh = os.path.join(mesh_dir, f"{d}_{size}.msh")
+            gen = [args.polydual, "generate", d, "--tets", str(size), "-o", msh]
+            r = run_step(os.path.join(rec_dir, f"generate_{d}_{size}.json"), gen, args.force or not os.path.exists(msh), False)
+            print(f"generate {d} {size}: rc {r['returncode']}", flush=True)
+            for v in args.variants:
+                vtu = os.path.join(mesh_dir, f"{d}_{size}_{v}.vtu")
+                cmd = [args.polydual, "convert", msh, "-o", vtu, "--json", "--quiet"] + VARIANTS[v]
+                r = run_step(os.path.join(rec_dir, f"{d}_{size}_{v}.json"), cmd, args.force, True)
+                r.update({"domain": d, "size": size, "variant": v})
+                write_json(os.path.join(rec_dir, f"{d}_{size}_{v}.json"), r)
+                print(f"  {v}: rc {r['returncode']} {r['wall_seconds']:.1f}s", flush=True)
+
+
+def load(out):
+    recs = []
+    rec_dir = os.path.join(out, "records")
+    for name in sorted(os.listdir(rec_dir)):
+        with open(os.path.join(rec_dir, name)) as f:
+            r = json.load(f)
+        if "variant" in r and "summary" in r:
+            recs.append(r)
+    return recs
+
+
+def get(recs, d, size, v):
+    for r in recs:
+        if r["domain"] == d and r["size"] == size and r["variant"] == v:
+            return r["summary"]
+    return None
+
+
+def fmt(x, nd=3):
+    if x is None:
+        return "-"
+    if isinstance(x, float):
+        return f"{x:.{nd}f}"
+    return str(x)
+
+
+def md(header, rows):
+    out = "| " + " | ".join(header) + " |\n|" + "---|" * len(header) + "\n"
+    for row in rows:
+        out += "| " + " | ".join(fmt(c) for c in row) + " |\n"
+    return out
+
+
+def opt_quality(s):
+    o = s.get("optimize") or {}
+    return (o.get("quality_after") or {}).get("mean"), o.get("seconds")
+
+
+def keys(recs):
+    ks = sorted({(r["size"], r["domain"]) for r in recs}, key=lambda k: (k[0], DOMAINS.index(k[1]) if k[1] in DOMAINS else 99))
+    return ks
+
+
+def table_tetopt(recs):
+    rows = []
+    for size, d in keys(recs):
+        raw, pre = get(recs, d, size, "none"), get(recs, d, size, "tetopt_none")
+        if not raw or not pre:
+            continue
+        t = pre.get("optimize_tets", {})
+        loc, ploc = get(recs, d, size, "local"), get(recs, d, size, "tetopt_local")
+        rows.append([d, raw["tets"], t["before"]["mean"], t["after"]["mean"], t["before"]["max"], t["after"]["max"],
+                     t["sweeps"], t["seconds"], raw["invalid_before"], pre["invalid_before"],
+                     opt_quality(loc)[0] if loc else None, opt_quality(ploc)[0] if ploc else None,
+                     loc["invalid_after"] if loc else None, ploc["invalid_after"] if ploc else None])
+    return md(["domain", "tets", "tet q mean before", "after", "tet q max before", "after", "sweeps", "tet opt s",
+               "invalid cells (raw)", "invalid cells (pre-opt)", "local mean κ/3 (raw)", "(pre-opt)",
+               "local invalid after (raw)", "(pre-opt)"], rows)
+
+
+def table_local_global(recs):
+    rows = []
+    for size, d in keys(recs):
+        loc, glo = get(recs, d, size, "local"), get(recs, d, size, "global")
+        if not loc or not glo:
+            continue
+        (ql, tl), (qg, tg) = opt_quality(loc), opt_quality(glo)
+        rows.append([d, loc["tets"], loc["invalid_before"], ql, loc["invalid_after"], tl, qg, glo["invalid_after"], tg,
+                     100.0 * (qg / ql - 1.0) if ql and qg else None, tg / tl if tl and tg else None])
+    return md(["domain", "tets", "invalid before", "local mean κ/3", "local invalid after", "local s",
+               "global mean κ/3", "global invalid after", "global s", "global vs local %", "time global/local"], rows)
+
+
+def table_flatness(recs):
+    rows = []
+    for size, d in keys(recs):
+        for v in ("none", "local", "global", "tetopt_local"):
+            s = get(recs, d, size, v)
+            if not s or "face_flatness" not in s:
+                continue
+            f = s["face_flatness"]
+            rows.append([d, s["tets"], v, f["min"], f["mean"], f["warped"], f["max_plane_deviation"], f["mean_plane_deviation"]])
+    return md(["domain", "tets", "variant", "flatness min", "flatness mean", "warped (<0.8)", "plane dev max", "plane dev mean"], rows)
+
+
+def render(args):
+    recs = load(args.out)
+    tables = {"tetopt_pre": table_tetopt(recs), "local_global": table_local_global(recs), "flatness": table_flatness(recs)}
+    tdir = os.path.join(args.out, "tables")
+    os.makedirs(tdir, exist_ok=True)
+    for name, body in tables.items():
+        with open(os.path.join(tdir, name + ".md"), "w") as f:
+            f.write(body)
+    if args.paper:
+        text = ("# Tet pre-optimisation, local against global, face flatness\n\n"
+                "Generated by `experiments/tetopt_compare.py --paper` from its records; do not edit by hand.\n"
+                "Quality is mean κ/3 (1 best). Times are wall seconds of the stage on a shared 2-core machine.\n\n"
+                "## With and without `--optimize-tets`\n\n" + tables["tetopt_pre"] +
+                "\n## Local against global optimiser\n\n" + tables["local_global"] +
+                "\n## Face flatness of the dual (OpenFOAM's measure; best-fit plane deviation / diameter)\n\n" +
+                tables["flatness"])
+        with open(os.path.join(REPO, "paper", "tetopt_tables.md"), "w") as f:
+            f.write(text)
+    for name, body in tables.items():
+        print(f"## {name}\n{body}")
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--polydual", default=os.path.join(REPO, "build", "polydual"))
+    ap.add_argument("--out", default="results_tetopt")
+    ap.add_argument("--sizes", default="20000,100000")
+    ap.add_argument("--domains", default=",".join(DOMAINS))
+    ap.add_argument("--variants", default=",".join(VARIANTS))
+    ap.add_argument("--render-only", action="store_true")
+    ap.add_argument("--paper", action="store_true", help="write paper/tetopt_tables.md")
+    ap.add_argument("--force", action="store_true")
+    args = ap.parse_args(argv)
+    args.sizes = [int(s) for s in args.sizes.split(",")]
+    args.domains = args.domains.split(",")
+    args.variants = args.variants.split(",")
+    for v in args.variants:
+        if v not in VARIANTS:
+            sys.exit(f"unknown variant {v} (one of {','.join(VARIANTS)})")
+    if not args.render_only:
+        measure(args)
+    render(args)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,88 @@
+// Condition-number optimisation of the input tets before the dual (paper
+// section 4: "condition number optimization" of the tetrahedral mesh; design §7).
+//
+// Objective: the sum over all tet corners of kappa_mod (quality/corner.h), the
+// same corner condition number the dual's optimisers use. A tet has 4 corners,
+// one per vertex, with edge vectors to the other three in right-handed order,
+// so kappa of a corner is the condition number of the corner's Jacobian.
+// Quality of a tet: the mean of kappa/3 over its corners (regular tet 1.2247).
+//
+// Scheme: Gauss-Seidel Newton over vertices, one colour of a greedy vertex
+// colouring at a time (no two vertices of a colour share a tet, so a colour is
+// processed in parallel and the result does not depend on the thread count).
+// Constraints:
+//  - model vertices (dim 0) never move;
+//  - vertices on a model edge (dim 1) move along the two original segments of
+//    that edge at the vertex, on a model face (dim 2) over the original
+//    triangles of that face around the vertex (closest point, original
+//    coordinates), so they stay exactly on the original facetisation of a
+//    planar entity and on it up to rounding otherwise;
+//  - a move is accepted only if every tet around the vertex stays positive by
+//    the exact orient3d and the local objective decreases (step halving).
+// Topology and classification are never changed: only coordinates move.
+#pragma once
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/json.h"
+#include "mesh/classified_tet_mesh.h"
+
+namespace polydual {
+
+struct TetOptParams {
+  // Run the stage (`convert --optimize-tets`). Default off.
+  bool enabled = false;
+  // Gauss-Seidel sweeps over all movable vertices, at most. Default 10.
+  int max_sweeps = 10;
+  // Stop when |f_prev - f| < tol * f_prev after a sweep. Default 1e-3.
+  double tol = 1e-3;
+  // Step halvings tried before a vertex's move is rejected. Default 20.
+  int max_halvings = 20;
+  // c of eq. 3 (delta of kappa_mod). Default 50 like the dual's optimiser.
+  double c = 50.0;
+
+  static constexpr int kMaxSweeps = 10000, kMaxHalvings = 60;
+  static constexpr double kMaxTol = 1.0, kMinDeltaC = 1.0, kMaxDeltaC = 1000.0;
+
+  // Throws UsageError naming the first field outside its range.
+  void validate() const;
+  Json to_json() const;
+};
+
+// Quality of the tet (p0,p1,p2,p3): mean kappa/3 over its 4 corners; +infinity
+// if a corner's volume is not positive in doubles.
+double tet_quality(const Point3& p0, const Point3& p1, const Point3& p2, const Point3& p3);
+
+struct TetQualityStats {
+  std::size_t tets = 0;
+  double min = 0, mean = 0, max = 0;  // of tet_quality (>= 1; larger is worse)
+  Json to_json() const;
+};
+TetQualityStats tet_quality_stats(const ClassifiedTetMesh& mesh, std::span<const Point3> points);
+
+struct TetOptReport {
+  TetQualityStats before, after;
+  int sweeps = 0;
+  std::uint32_t colours = 0;
+  std::size_t movable = 0;               // vertices with a degree of freedom
+  std::uint64_t visits = 0, moves = 0;   // vertex visits, accepted moves (all sweeps)
+  std::uint64_t rejected_invalid = 0;    // trial points rejected because a tet turned non-positive
+  std::vector<double> objective;         // after sweep i (index 0: initial)
+  double seconds = 0;
+  Json to_json() const;
+};
+
+// The optimised coordinates of every vertex of `mesh` (mesh unchanged).
+std::vector<Point3> optimized_tet_points(const ClassifiedTetMesh& mesh, const TetOptParams& params,
+                                         TetOptReport* report = nullptr);
+
+// `mesh` with its coordinates replaced by `points` (same tets, ids and
+// classification). Throws InputError naming the source and the tet if a tet of
+// the result is not positive by the exact orient3d.
+ClassifiedTetMesh with_points(const ClassifiedTetMesh& mesh, std::vector<Point3> points);
+
+// Both in one: replaces `mesh` by its optimised version and reports.
+TetOptReport optimize_tets(ClassifiedTetMesh& mesh, const TetOptParams& params);
+
+}  // namespace polydual
