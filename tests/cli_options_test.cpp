@@ -400,7 +400,7 @@ TEST(CliOptions, ForceAndOutputGuard) {
 
 TEST(CliOptions, SplitByDefaultNoSplitRoundsAndRequireValid) {
   const std::string off = convert_json("--optimize none --no-split", "s_off.vtu");
-  const std::string on = convert_json("--optimize none", "s_on.vtu");
+  const std::string on = convert_json("--optimize none --split-rounds 2", "s_on.vtu");
   const std::string zero = convert_json("--optimize none --split-rounds 0", "s_zero.vtu");
   ASSERT_GT(jnum(off, "d['invalid_after']"), 0);
   EXPECT_EQ(jq(off, "'split' in d['seconds']['stages']"), "False");
@@ -410,8 +410,9 @@ TEST(CliOptions, SplitByDefaultNoSplitRoundsAndRequireValid) {
   EXPECT_GT(jnum(on, "len(d['split']['rounds'])"), 0);
   EXPECT_LE(jnum(on, "d['invalid_after']"), jnum(off, "d['invalid_after']"));
   EXPECT_EQ(jnum(on, "d['split']['cells_split']['still_invalid']"), jnum(on, "d['invalid_after']"));
-  // No rounds: the first dual as it is (no free edge in this mesh).
+  // No rounds (the default): the first dual as it is (no free edge in this mesh).
   EXPECT_EQ(jnum(zero, "len(d['split']['rounds'])"), 0);
+  EXPECT_EQ(jnum(convert_json("--optimize none", "s_default.vtu"), "len(d['split']['rounds'])"), 0);
   EXPECT_EQ(jnum(zero, "d['invalid_after']"), jnum(off, "d['invalid_after']"));
   EXPECT_EQ(run("convert " + meshes().msh.string() + " -o " + (scratch_root() / "s_bad.vtu").string() +
                 " --split-rounds " + std::to_string(polydual::SplitParams::kMaxRounds + 1))

@@ -55,6 +55,7 @@ TEST(SplitPipeline, RoundsNeverMakeItWorse) {
   const TetSoup soup = generate_domain(Domain::Fichera, 3000);
   PipelineParams p;
   p.optim.method = OptimParams::Method::None;
+  p.split.max_rounds = 3;
   const ConvertResult r = convert(soup, p);
   p.split.enabled = false;
   const ConvertResult plain = convert(soup, p);
@@ -107,7 +108,9 @@ TEST(SplitPipeline, RandomMeshesNoSlitNeverWorse) {
     p.crossing_sheet = family == 3;
     p.lattice_points = family == 4;
     const TetSoup soup = random_classified_mesh(p);
-    const ConvertResult r = convert(soup, PipelineParams{}), plain = convert(soup, first);
+    PipelineParams rounds;
+    rounds.split.max_rounds = 2;
+    const ConvertResult r = convert(soup, rounds), plain = convert(soup, first);
     EXPECT_LE(r.check.invalid_cells, plain.check.invalid_cells) << "mesh " << i << " family " << family;
     EXPECT_EQ(r.check.validation.face_errors, 0u) << "mesh " << i;
     EXPECT_EQ(r.check.validation.slit_cells, 0u) << "mesh " << i;

@@ -19,10 +19,13 @@ struct SplitParams {
   // Split (default on). Off (`--no-split`): the dual without cuts, as before.
   bool enabled = true;
   // Most rebuild rounds after the first optimised dual. Two escalation levels
-  // exist (plane, fallback), so 2 rounds reach the fallback everywhere; the
-  // default 3 leaves one round for vertices that become invalid only after a
-  // neighbour was split. Range [0, kMaxRounds].
-  int max_rounds = 3;
+  // exist (plane, fallback), so 2 rounds reach the fallback everywhere.
+  // Default 0 (`--split-rounds N` to try them): on every mesh measured so far
+  // the rounds ended with as many invalid cells as round 0 or more (the
+  // points they insert into the neighbours' faces invalidate neighbours; the
+  // loop keeps the best round), at the cost of one more optimisation each.
+  // Range [0, kMaxRounds].
+  int max_rounds = 0;
   // Any cell still invalid at the end is an error (InputError naming each
   // cell, its primal vertex and its classification); nothing is written.
   bool require_valid = false;
