@@ -33,13 +33,24 @@ constexpr Family kFamilies[] = {
 TEST(RandomFamilies, InvalidCellsAfterDefaultOptimiser) {
   constexpr int kSeeds = 3;
   for (const Family& f : kFamilies) {
-    std::size_t cells = 0, before = 0, after = 0, slit = 0;
+    std::size_t cells = 0, before = 0, after = 0, slit = 0, split_slit = 0, split_after = 0;
     for (int seed = 1; seed <= kSeeds; ++seed) {
       RandomMeshParams p;
       p.seed = static_cast<std::uint64_t>(seed);
       p.num_points = 60;
       f.set(p);
-      const ConvertResult r = convert(random_classified_mesh(p), PipelineParams{});
+      // The split's workload: the dual without cuts (--no-split).
+      PipelineParams no_split;
+      no_split.split.enabled = false;
+      const TetSoup soup = random_classified_mesh(p);
+      const ConvertResult r = convert(soup, no_split);
+      // The default (free-edge cuts): no slit cell left, every cell closed.
+      const ConvertResult cut = convert(soup, PipelineParams{});
+      EXPECT_EQ(cut.check.validation.slit_cells, 0u) << f.name << " seed " << seed;
+      EXPECT_EQ(cut.check.validation.face_errors, 0u) << f.name << " seed " << seed;
+      EXPECT_EQ(cut.check.validation.closed_cells, cut.check.validation.cells) << f.name << " seed " << seed;
+      split_slit += cut.check.validation.slit_cells;
+      split_after += cut.report.invalid_after;
       EXPECT_LE(r.report.invalid_after, r.report.invalid_before) << f.name << " seed " << seed;
       EXPECT_EQ(r.check.validation.face_errors, 0u) << f.name << " seed " << seed;
       EXPECT_EQ(r.check.validation.closed_cells, r.check.validation.cells) << f.name << " seed " << seed;
@@ -49,7 +60,8 @@ TEST(RandomFamilies, InvalidCellsAfterDefaultOptimiser) {
       slit += r.check.validation.slit_cells;
     }
     std::printf("family %-9s %2d meshes of 60 random points: %6zu cells, invalid before %4zu, after %4zu "
-                "(slit cells %4zu)\n", f.name, kSeeds, cells, before, after, slit);
+                "(slit cells %4zu); split by default: invalid after %4zu, slit cells %zu\n",
+                f.name, kSeeds, cells, before, after, slit, split_after, split_slit);
     if (std::string(f.name) != "plain" && std::string(f.name) != "notch")
       EXPECT_GT(slit, 0u) << f.name << ": the sheets must end inside somewhere (fracture tips)";
   }
