@@ -773,6 +773,26 @@ Json ClassifyStats::to_json() const {
   return out;
 }
 
+namespace {
+// ModelEntity::planar of every model face: all its triangles in the plane of
+// its first one, by the exact orientation test.
+void mark_planar_faces(ClassifiedTetMesh& m) {
+  std::map<std::int32_t, std::array<Point3, 3>> plane;  // model face tag -> its first triangle
+  std::set<std::int32_t> curved;
+  for (std::size_t t = 0; t < m.num_triangles(); ++t) {
+    if (!m.on_model_face(TriId(t))) continue;
+    const std::int32_t tag = m.triangle_class(TriId(t)).tag;
+    const auto tv = m.triangle(TriId(t));
+    const std::array<Point3, 3> tri{m.point(tv[0]), m.point(tv[1]), m.point(tv[2])};
+    const auto& ref = plane.try_emplace(tag, tri).first->second;
+    for (const Point3& p : tri)
+      if (orient3d(ref[0], ref[1], ref[2], p) != Sign::Zero) curved.insert(tag);
+  }
+  for (ModelEntity& f : TetMeshBuilder::model(m).entities[2]) f.planar = plane.count(f.tag) && !curved.count(f.tag);
+}
+
+}  // namespace
+
 ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params, ClassifyStats* stats) {
   params.validate();
   ClassifyStats local;
@@ -785,6 +805,7 @@ ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params, Cl
   st.seconds_topology = since(t0);
   t0 = Clock::now();
   ModelInference(soup, params, c.remap, m).run();
+  mark_planar_faces(m);
   st.seconds_classification = since(t0);
   return m;
 }

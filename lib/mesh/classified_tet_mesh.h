@@ -88,6 +88,10 @@ struct ModelEntity {
   std::vector<std::int32_t> regions; // for faces: regions on its sides (1 or 2 tags, equal twice for a fracture)
   std::optional<std::int32_t> source_tag;
   std::string name;
+  // Faces: all its triangles lie in one plane (decided by classify() with the
+  // exact orientation test; data structures decide no signs). False when
+  // unknown or curved.
+  bool planar = false;
 };
 
 // The kind of a model face (dim 2) from its regions: one region listed ->

@@ -11,7 +11,6 @@
 #include <tuple>
 #include <utility>
 
-#include "predicates/predicates.h"
 
 namespace polydual {
 
@@ -219,20 +218,12 @@ void check_model_entities(const PolyMesh& pm, const std::vector<bool>& loop_in_r
 }
 
 // Regions bounded by a model face (external or interface; a fracture has the
-// same region on both sides and its dual faces cancel within it) whose
-// triangles are not all in one plane, by the exact orientation test.
+// same region on both sides and its dual faces cancel within it) that is not
+// planar (ModelEntity::planar, decided exactly by classify()).
 std::set<std::int32_t> regions_with_curved_faces(const ClassifiedTetMesh& primal) {
-  std::map<std::int32_t, std::array<Point3, 3>> plane;  // model face tag -> its first triangle
   std::set<std::int32_t> curved;
-  for (std::size_t t = 0; t < primal.num_triangles(); ++t) {
-    if (!primal.on_model_face(TriId(t))) continue;
-    const std::int32_t tag = primal.triangle_class(TriId(t)).tag;
-    const auto tv = primal.triangle(TriId(t));
-    const std::array<Point3, 3> tri{primal.point(tv[0]), primal.point(tv[1]), primal.point(tv[2])};
-    const auto& ref = plane.try_emplace(tag, tri).first->second;
-    for (const Point3& p : tri)
-      if (orient3d(ref[0], ref[1], ref[2], p) != Sign::Zero) curved.insert(tag);
-  }
+  for (const ModelEntity& f : primal.model().entities[2])
+    if (!f.planar) curved.insert(f.tag);
   std::set<std::int32_t> regions;
   for (std::int32_t tag : curved) {
     const ModelEntity* f = primal.model().find(2, tag);

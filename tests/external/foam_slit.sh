@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Slow external check (issue 13 part 5): the slit faces of the fracture domain's
+# Slow external check (issue 13 part 4): with --no-split, the slit faces of the fracture domain's
 # dual (owner == neighbour, at the fracture tip) reach the OpenFOAM case as
 # baffles, two boundary faces of the slit cell in the patch face_<fracture tag>,
 # and checkMesh accepts the topology (closed cells, one baffle per slit face).
@@ -18,7 +18,7 @@ for d in fracture network; do
   case_dir="$out/${d}_case"
   rm -rf "$case_dir"
   "$bin" generate $d --tets 3000 -o "$out/$d.msh" 2>/dev/null || { echo "foam_slit: generate $d failed"; exit 1; }
-  "$bin" convert "$out/$d.msh" --format foam -o "$case_dir" --json --quiet > "$out/$d.json" \
+  "$bin" convert "$out/$d.msh" --format foam -o "$case_dir" --no-split --json --quiet > "$out/$d.json" \
     || { echo "foam_slit: convert $d failed"; exit 1; }
   /usr/bin/checkMesh -case "$case_dir" -allTopology > "$out/$d.log" 2>&1
   rc=$?
