@@ -38,6 +38,14 @@ void operator delete(void* p) noexcept {
   std::free(p);
 }
 void operator delete(void* p, std::size_t) noexcept { operator delete(p); }
+// The nothrow forms too: otherwise a library's nothrow new would be served by
+// another allocator (AddressSanitizer's) and freed by the delete above.
+void* operator new(std::size_t n, const std::nothrow_t&) noexcept {
+  void* p = std::malloc(n ? n : 1);
+  if (p) note(static_cast<long long>(malloc_usable_size(p)));
+  return p;
+}
+void operator delete(void* p, const std::nothrow_t&) noexcept { operator delete(p); }
 
 namespace polydual {
 namespace {
