@@ -288,13 +288,13 @@ VertexCuts plane_cuts(const ClassifiedTetMesh& m, std::span<const VertexId> vert
     Star s(m, v);
     const std::vector<TriId> planes = face_planes(m, s);
     if (planes.empty()) continue;
-    // Label: base-3 digits of the tet's side of each plane (at most 20 planes
-    // enter the label; more faces at one vertex are not met in practice).
+    // Label: base-3 digits of the tet's side of each plane (at most 19 planes enter the label, so the code fits
+    // an int; more faces at one vertex are not met in practice).
     std::vector<int> label(s.tets.size(), 0);
     for (std::size_t k = 0; k < s.tets.size(); ++k) {
       const auto& t = m.tet(s.tets[k]);
       int code = 0;
-      for (std::size_t p = 0; p < planes.size() && p < 20; ++p) {
+      for (std::size_t p = 0; p < planes.size() && p < 19; ++p) {
         const auto [a, b, c] = m.triangle(planes[p]);
         int sum = 0;
         for (VertexId x : t)
