@@ -67,15 +67,20 @@ void LaggedObjective::build(const MeshStencil& s, const Point3* pts, const doubl
   }
 }
 
+// The corner's three edge vectors with the point at x: u_i + a_i x.
+void LaggedObjective::corner_edges(const Corner& k, const Point3& x, double e[3][3]) {
+  for (int i = 0; i < 3; ++i) {
+    e[i][0] = k.u[i].x + k.a[i] * x.x;
+    e[i][1] = k.u[i].y + k.a[i] * x.y;
+    e[i][2] = k.u[i].z + k.a[i] * x.z;
+  }
+}
+
 double LaggedObjective::value(const Point3& x, double c) const {
   double sum = 0;
   double e[3][3];
   for (const Corner& k : corners_) {
-    for (int i = 0; i < 3; ++i) {
-      e[i][0] = k.u[i].x + k.a[i] * x.x;
-      e[i][1] = k.u[i].y + k.a[i] * x.y;
-      e[i][2] = k.u[i].z + k.a[i] * x.z;
-    }
+    corner_edges(k, x, e);
     sum += corner_kappa_mod<double>(e[0], e[1], e[2], k.v0, c);
   }
   return sum;
@@ -87,11 +92,7 @@ double LaggedObjective::derivatives(const Point3& x, double c, double g[3], doub
   double sum = 0;
   double e[3][3];
   for (const Corner& k : corners_) {
-    for (int i = 0; i < 3; ++i) {
-      e[i][0] = k.u[i].x + k.a[i] * x.x;
-      e[i][1] = k.u[i].y + k.a[i] * x.y;
-      e[i][2] = k.u[i].z + k.a[i] * x.z;
-    }
+    corner_edges(k, x, e);
     sum += corner_kappa_mod_add_point_derivatives(e[0], e[1], e[2], k.a[0], k.a[1], k.a[2], k.v0, c, g, H);
   }
   return sum;

@@ -33,6 +33,7 @@ class LaggedObjective {
     double a[3];
     double v0;
   };
+  static void corner_edges(const Corner& k, const Point3& x, double e[3][3]);
   void add(const Point3* P, const bool* is_p, const Point3& vertex, bool vertex_is_p, double v0);
   std::vector<Corner> corners_;
 };
