@@ -183,3 +183,24 @@ TEST(Classify, FaceKindFromRegions) {
   EXPECT_EQ(face_kind(ModelEntity{2, 5, {1}, {1, 1}}), FaceKind::Fracture);
   EXPECT_THROW(m.model().face_kind(123456), std::out_of_range);
 }
+
+// Coordinates the floating-point stages cannot take (fuzz_pipeline: 3.3e81
+// overflowed a face normal and reached the optimiser as NaN) are refused by
+// name; a mesh merely far from the origin or small is kept.
+TEST(Classify, CoordinatesOutOfTheDoubleStagesRangeAreRefused) {
+  TetSoup s = kuhn_lattice(1, 1, 1);
+  s.source = "big.mesh";
+  s.points[3].x = 3.3e81;
+  try {
+    classify(s);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("big.mesh: vertex 4: coordinate 3.3e+81 exceeds 1e30"));
+  }
+  TetSoup tiny = kuhn_lattice(1, 1, 1);
+  for (auto& p : tiny.points) p = p * 1e-40;
+  EXPECT_THROW(classify(tiny), InputError);
+  TetSoup ok = kuhn_lattice(1, 1, 1);
+  for (auto& p : ok.points) p = p * 1e-6 + Point3{1e6, -1e6, 3e5};
+  EXPECT_NO_THROW(classify(ok));
+}

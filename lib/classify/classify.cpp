@@ -17,6 +17,7 @@
 #include <bit>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 #include <numeric>
@@ -57,6 +58,39 @@ struct Compacted {
 
 // Indices in range, no repeated vertex in a tet, finite coordinates of the
 // used vertices; returns which vertices are used.
+// Coordinates the floating-point stages can take: finite, of magnitude at most
+// kMaxCoordinate, spanning at least kMinExtent. The exact predicates take any
+// double, but the dual's points (means, face normals) and the optimiser's
+// kappa square and cube coordinate differences: 3.3e81 overflowed a normal to
+// inf and the optimiser's primitive search to NaN (fuzz_pipeline).
+constexpr double kMaxCoordinate = 1e30;
+constexpr double kMinExtent = 1e-30;
+
+std::string number(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", x);
+  return buf;
+}
+
+void check_coordinates(const TetSoup& s, const std::vector<char>& used) {
+  Point3 lo{kMaxCoordinate, kMaxCoordinate, kMaxCoordinate}, hi{-kMaxCoordinate, -kMaxCoordinate, -kMaxCoordinate};
+  for (std::size_t v = 0; v < s.points.size(); ++v) {
+    if (!used[v]) continue;
+    const Point3& x = s.points[v];
+    if (!is_finite(x)) throw InputError(s.source, "vertex " + std::to_string(v + 1), "coordinate is not finite");
+    for (int d = 0; d < 3; ++d) {
+      if (std::fabs(x[d]) > kMaxCoordinate)
+        throw InputError(s.source, "vertex " + std::to_string(v + 1),
+                         "coordinate " + number(x[d]) + " exceeds 1e30 in magnitude (rescale the mesh)");
+      lo[d] = std::min(lo[d], x[d]);
+      hi[d] = std::max(hi[d], x[d]);
+    }
+  }
+  const double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+  if (extent < kMinExtent)
+    throw InputError(s.source, "", "the mesh spans " + number(extent) + ", below 1e-30 (rescale the mesh)");
+}
+
 std::vector<char> check_indices(const TetSoup& s) {
   const std::size_t nv = s.points.size();
   if (s.tets.empty()) throw InputError(s.source, "", "mesh has no tetrahedra");
@@ -78,9 +112,7 @@ std::vector<char> check_indices(const TetSoup& s) {
       used[tv[i]] = 1;
     }
   }
-  for (std::size_t v = 0; v < nv; ++v)
-    if (used[v] && !is_finite(s.points[v]))
-      throw InputError(s.source, "vertex " + std::to_string(v + 1), "coordinate is not finite");
+  check_coordinates(s, used);
   return used;
 }
 

@@ -28,6 +28,17 @@ auto run_stage(ConvertReport& report, const ConvertHooks& hooks, const char* nam
 }
 
 
+// The dual's points are computed in floating point (means, normals); a mesh
+// whose scale the input check let through but whose arithmetic still over- or
+// underflowed is refused here, before the optimiser sees a NaN.
+void require_finite_points(const PolyMesh& pm, const std::string& source) {
+  for (std::size_t p = 0; p < pm.num_points(); ++p)
+    if (!is_finite(pm.points[p]))
+      throw InputError(source, "dual point " + std::to_string(p + 1),
+                       "not finite: the mesh's coordinates are out of the range double arithmetic handles "
+                       "(rescale the mesh)");
+}
+
 // Algorithm 1 as three stages (design §4): the draft (steps 1-7 and the
 // cleanup's hints), the cleanup (§2.8), the cells (step 8); cuts may be null.
 PolyMesh run_dual_stages(ConvertResult& r, const PipelineParams& params, const ConvertHooks& hooks,
@@ -44,6 +55,7 @@ PolyMesh run_dual_stages(ConvertResult& r, const PipelineParams& params, const C
   });
   return run_stage(r.report, hooks, "cells", [&](Json& stats) {
     PolyMesh pm = assemble_cells(std::move(draft));
+    require_finite_points(pm, r.primal.source());
     stats = Json::object();
     stats.set("cells", pm.num_cells());
     return pm;
