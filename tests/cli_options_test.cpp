@@ -186,7 +186,7 @@ TEST(CliOptions, CleanupOptions) {
 }
 
 TEST(CliOptions, OptimizerOptions) {
-  const std::string none = convert_json("--optimize none", "o_none.vtu");
+  const std::string none = convert_json("--optimize none --no-split", "o_none.vtu");
   EXPECT_EQ(jq(none, "d['optimize']"), "None");
   EXPECT_EQ(jnum(none, "d['invalid_before']"), jnum(none, "d['invalid_after']"));
   ASSERT_GT(jnum(none, "d['invalid_before']"), 0);  // so untangling has something to do
@@ -266,7 +266,7 @@ TEST(CliOptions, GenerateTetsAndOutput) {
 TEST(CliOptions, OptimizeCommand) {
   const fs::path d = scratch_root();
   const std::string msh = meshes().msh.string();
-  ASSERT_EQ(run("convert " + msh + " -o " + (d / "raw.vtu").string() + " --optimize none").code, 0);
+  ASSERT_EQ(run("convert " + msh + " -o " + (d / "raw.vtu").string() + " --optimize none --no-split").code, 0);
   const std::string raw = (d / "raw.vtu").string();
   CmdResult fixed = run("optimize " + raw + " -o " + (d / "fixed.vtu").string() + " --max-iter 3 --json");
   ASSERT_EQ(fixed.code, 0) << fixed.err;
@@ -308,7 +308,9 @@ TEST(CliOptions, DemoOptions) {
   const std::string summary = slurp(d / "summary.json");
   EXPECT_EQ(jnum(summary, "len(d)"), 2);
   EXPECT_EQ(jq(summary, "[x['params']['optimize'] for x in d]"), "['none', 'none']");
-  EXPECT_EQ(jq(summary, "all(x['invalid_before'] == x['invalid_after'] for x in d)"), "True");
+  // Without the optimiser the split alone leaves every cell valid.
+  EXPECT_EQ(jq(summary, "all(x['invalid_after'] == 0 for x in d)"), "True");
+  EXPECT_EQ(jq(summary, "any(x['invalid_before'] > 0 for x in d)"), "True");
   EXPECT_EQ(jq(summary, "all(x['recheck']['cells'] == x['cells'] for x in d)"), "True");
   EXPECT_EQ(jq(summary, "all(200 < x['tets'] < 800 for x in d)"), "True");
   EXPECT_THAT(r.out, HasSubstr("fracture"));
@@ -400,19 +402,19 @@ TEST(CliOptions, ForceAndOutputGuard) {
 
 TEST(CliOptions, SplitByDefaultNoSplitRoundsAndRequireValid) {
   const std::string off = convert_json("--optimize none --no-split", "s_off.vtu");
-  const std::string on = convert_json("--optimize none --split-rounds 2", "s_on.vtu");
+  const std::string on = convert_json("--optimize none", "s_on.vtu");
   const std::string zero = convert_json("--optimize none --split-rounds 0", "s_zero.vtu");
   ASSERT_GT(jnum(off, "d['invalid_after']"), 0);
   EXPECT_EQ(jq(off, "'split' in d['seconds']['stages']"), "False");
   EXPECT_EQ(jq(off, "d['split'] is None"), "True");
   EXPECT_EQ(jq(on, "'split' in d['seconds']['stages']"), "True");
-  // Rounds ran; the loop keeps its best round, never worse than no split here.
+  // By default the rounds run until every cell is valid (whole cuts).
   EXPECT_GT(jnum(on, "len(d['split']['rounds'])"), 0);
-  EXPECT_LE(jnum(on, "d['invalid_after']"), jnum(off, "d['invalid_after']"));
+  EXPECT_EQ(jnum(on, "d['invalid_after']"), 0);
+  EXPECT_GT(jnum(on, "d['split']['vertices_cut']"), 0);
   EXPECT_EQ(jnum(on, "d['split']['cells_split']['still_invalid']"), jnum(on, "d['invalid_after']"));
-  // No rounds (the default): the first dual as it is (no free edge in this mesh).
+  // No rounds: the first dual as it is (no free edge in this mesh).
   EXPECT_EQ(jnum(zero, "len(d['split']['rounds'])"), 0);
-  EXPECT_EQ(jnum(convert_json("--optimize none", "s_default.vtu"), "len(d['split']['rounds'])"), 0);
   EXPECT_EQ(jnum(zero, "d['invalid_after']"), jnum(off, "d['invalid_after']"));
   EXPECT_EQ(run("convert " + meshes().msh.string() + " -o " + (scratch_root() / "s_bad.vtu").string() +
                 " --split-rounds " + std::to_string(polydual::SplitParams::kMaxRounds + 1))
@@ -421,7 +423,7 @@ TEST(CliOptions, SplitByDefaultNoSplitRoundsAndRequireValid) {
   // --require-valid: exit 1, every invalid cell named, nothing written.
   const fs::path out = scratch_root() / "s_req.vtu";
   const CmdResult r = run("convert " + meshes().msh.string() + " -o " + out.string() +
-                          " --optimize none --no-split --require-valid");
+                          " --optimize none --split-rounds 0 --require-valid");
   EXPECT_EQ(r.code, 1) << r.err;
   EXPECT_NE(r.err.find("remain invalid"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("class dim"), std::string::npos) << r.err;

@@ -155,6 +155,7 @@ TEST(Pipeline, OptimizeMeshWorksOnAPolyMeshAlone) {
   const TetSoup soup = test_soup();
   PipelineParams params;
   params.optim.method = OptimParams::Method::None;
+  params.split.enabled = false;
   ConvertResult r = convert(soup, params);
   ASSERT_GT(r.check.invalid_cells, 0u);  // the random mesh has something to untangle
   OptimParams o;

@@ -53,7 +53,7 @@ const std::vector<OptionDef> kTable = {
      "keep the dual without virtual cuts: slit cells at free edges and cells no placement makes valid stay",
      nullptr, [](Settings& s, const std::string&) { s.params.split.enabled = false; }},
     {"--split-rounds", K::Int, "N", 0, SplitParams::kMaxRounds,
-     "rebuild rounds for cells still invalid after optimisation (plane cuts, then one cell per tet)",
+     "most rounds cutting the vertices of cells still invalid whole (one convex cell per tet); 0: free-edge cuts only",
      [](const Settings& d) { return std::to_string(d.params.split.max_rounds); },
      [](Settings& s, const std::string& v) { s.params.split.max_rounds = std::stoi(v); }},
     {"--require-valid", K::Flag, "", kNoRange, kNoRange,

@@ -76,6 +76,7 @@ struct DualPoints {
   // centre (no tolerance admits it in the coincidence test).
   std::vector<double> tet_centre_error;
   std::vector<char> tri_well_centred;  // by rank among the model-face triangles
+  std::vector<char> pinned;            // per point, empty without whole cuts (cut_topology.h)
 };
 
 // STEP 1-4. Tet centers get PointId == TetId. With cuts (cut_topology.h) the
@@ -94,11 +95,16 @@ DualPoints make_points(const ClassifiedTetMesh& m, const CutTopology& ct, PolyMe
     pm.point_origin.push_back(PointOrigin{dim, std::uint32_t(id)});
   };
   d.tet_centre_error.resize(nt);
+  const bool pin = ct.active && !ct.cuts->whole.empty();
   // Independent per tet: parallel, and the same result for any thread count.
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nt, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t t = r.begin(); t < r.end(); ++t) {
       const auto& v = m.tet(TetId(t));
       CentralPoint c = tet_central_point(m.point(v[0]), m.point(v[1]), m.point(v[2]), m.point(v[3]));
+      if (pin && pinned(m, ct.cuts, PointOrigin{3, std::uint32_t(t)})) {  // C5: the centroid, never merged
+        c.p = barycentre(m, PointOrigin{3, std::uint32_t(t)});
+        c.well_centred = false;
+      }
       pm.points[t] = c.p;
       pm.point_class[t] = ModelRef{3, m.region(TetId(t))};
       pm.point_origin[t] = PointOrigin{3, std::uint32_t(t)};
@@ -115,6 +121,10 @@ DualPoints make_points(const ClassifiedTetMesh& m, const CutTopology& ct, PolyMe
     if (!model && !ct.is_cut(TriId(f))) continue;
     const auto& v = m.triangle(TriId(f));
     CentralPoint c = triangle_central_point(m.point(v[0]), m.point(v[1]), m.point(v[2]));
+    if (pin && pinned(m, ct.cuts, PointOrigin{2, std::uint32_t(f)})) {
+      c.p = barycentre(m, PointOrigin{2, std::uint32_t(f)});
+      c.well_centred = false;
+    }
     add(c.p, model ? m.triangle_class(TriId(f)) : ModelRef{3, m.region(m.triangle_tet(TriId(f), 0))}, 2, f);
     d.tri_point.set(f);
     // A cut triangle's centre is never merged (cleanup_dual: no merge across cuts).
@@ -137,6 +147,10 @@ DualPoints make_points(const ClassifiedTetMesh& m, const CutTopology& ct, PolyMe
       d.vert_point[v] = PointId(pm.num_points());
       add(m.point(VertexId(v)), m.vertex_class(VertexId(v)), 0, v);
     }
+  if (pin) {
+    d.pinned.resize(pm.num_points());
+    for (std::size_t p = 0; p < pm.num_points(); ++p) d.pinned[p] = char(pinned(m, ct.cuts, pm.point_origin[p]));
+  }
   return d;
 }
 
@@ -439,7 +453,8 @@ PointPairs point_pairs(const ClassifiedTetMesh& m, const CutTopology& ct, const 
       // Inexact: a length threshold is a tolerance, not a sign.
       if (dot(dc, dc) < lim2) [[unlikely]] {
         const TriId f = m.tet_triangle(t0, i);
-        if (!m.on_model_face(f) && !ct.is_cut(f)) out.short_.emplace_back(PointId(t0.idx), PointId(t1.idx));
+        const bool pin = !d.pinned.empty() && (d.pinned[t0.idx] || d.pinned[t1.idx]);
+        if (!m.on_model_face(f) && !ct.is_cut(f) && !pin) out.short_.emplace_back(PointId(t0.idx), PointId(t1.idx));
       }
       // Cospherical (sharing a face) iff the exact circumcentres coincide. If
       // the rounded centres differ by more than their error bounds (L9c), they
@@ -577,6 +592,7 @@ DualDraft build_dual_draft(const ClassifiedTetMesh& m, const DualParams& params,
   }
   d.tet_centre_error = std::vector<double>();
   d.tri_well_centred = std::vector<char>();
+  draft.pinned = std::move(d.pinned);
   st.seconds_hints = since(t0);
 
   t0 = Clock::now();

@@ -104,7 +104,10 @@ std::size_t collapse_short_edges(const PolyMesh& pm, const DualDraft& d, UnionFi
   // other edges, other vertices) are classified on an entity of higher
   // dimension and keep the cut surface where the builder put it.
   const auto& origin = pm.point_origin;
-  auto own = [&](std::uint32_t p) { return origin.empty() || origin[p].dim == pm.point_class[p].dim; };
+  // Points pinned by a whole-cut vertex (C5) never collapse either.
+  auto own = [&](std::uint32_t p) {
+    return (origin.empty() || origin[p].dim == pm.point_class[p].dim) && (d.pinned.empty() || !d.pinned[p]);
+  };
   // The length test comes first: it is almost always false, and the classes
   // are then never loaded.
   auto check = [&](std::uint32_t rp, std::uint32_t rq) {
@@ -219,6 +222,7 @@ Json CleanupStats::to_json() const {
   d.exact_pairs = {};
   d.short_pairs = {};
   d.scan_faces = {};
+  d.pinned = {};
   const bool merged = st.merged_points + st.collapsed_points > 0;
   st.dropped_faces = rewrite_touched_faces(pm, faces_to_rewrite(pm, merged, uf), uf);
   st.dropped_points = drop_unused_points(pm);

@@ -15,6 +15,9 @@ void check_cuts(const ClassifiedTetMesh& m, const VertexCuts& c) {
   if (c.off.size() != nv + 1)
     throw InputError(src, "vertex cuts", "offsets for " + std::to_string(c.off.size()) + " entries, the mesh has " +
                                              std::to_string(nv) + " vertices (needs vertices + 1)");
+  if (!c.whole.empty() && c.whole.size() != nv)
+    throw InputError(src, "vertex cuts", "whole flags for " + std::to_string(c.whole.size()) + " vertices, the mesh has " +
+                                             std::to_string(nv));
   if (c.off[0] != 0 || c.off[nv] != c.tri.size())
     throw InputError(src, "vertex cuts", "offsets do not span the triangle list");
   for (std::size_t v = 0; v < nv; ++v) {
@@ -60,6 +63,38 @@ EdgeStop edge_stop(const ClassifiedTetMesh& m, const CutTopology& ct, EdgeId e, 
 
 }  // namespace
 
+bool pinned(const ClassifiedTetMesh& m, const VertexCuts* cuts, PointOrigin o) {
+  if (cuts == nullptr || cuts->whole.empty() || o.dim < 0) return false;
+  auto any = [&](const auto& vs) {
+    return std::any_of(vs.begin(), vs.end(), [&](VertexId v) { return cuts->is_whole(v); });
+  };
+  switch (o.dim) {
+    case 0: return cuts->is_whole(VertexId(o.id));
+    case 1: return any(m.edge(EdgeId(o.id)));
+    case 2: return any(m.triangle(TriId(o.id)));
+    default: return any(m.tet(TetId(o.id)));
+  }
+}
+
+Point3 barycentre(const ClassifiedTetMesh& m, PointOrigin o) {
+  switch (o.dim) {
+    case 0: return m.point(VertexId(o.id));
+    case 1: {
+      const auto v = m.edge(EdgeId(o.id));
+      return 0.5 * (m.point(v[0]) + m.point(v[1]));
+    }
+    case 2: {
+      const auto v = m.triangle(TriId(o.id));
+      const Point3& a = m.point(v[0]);
+      return a + (m.point(v[1]) - a) / 3.0 + (m.point(v[2]) - a) / 3.0;
+    }
+    default: {
+      const auto v = m.tet(TetId(o.id));
+      return 0.25 * (m.point(v[0]) + m.point(v[1]) + m.point(v[2]) + m.point(v[3]));
+    }
+  }
+}
+
 CutTopology cut_topology(const ClassifiedTetMesh& m, const VertexCuts* cuts) {
   CutTopology ct;
   if (cuts == nullptr || cuts->empty()) return ct;
@@ -83,8 +118,10 @@ CutTopology cut_topology(const ClassifiedTetMesh& m, const VertexCuts* cuts) {
     const EdgeId e(ei);
     const auto [a, b] = m.edge(e);
     const bool model_edge = m.edge_class(e).dim == 1;
-    if (!model_edge && cuts->of(a).empty() && cuts->of(b).empty()) continue;
-    const EdgeStop s = edge_stop(m, ct, e, ring, tris);
+    const bool whole = cuts->is_whole(a) || cuts->is_whole(b);
+    if (!model_edge && !whole && cuts->of(a).empty() && cuts->of(b).empty()) continue;
+    EdgeStop s = edge_stop(m, ct, e, ring, tris);
+    s.stop = s.stop || whole;  // C5: every edge of a whole vertex has its midpoint
     if (!s.stop) continue;
     ct.stop[ei] = 1;
     if (s.caps_a && ends[a.idx] < 3) ++ends[a.idx];

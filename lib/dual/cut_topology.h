@@ -11,6 +11,7 @@
 
 #include "dual/vertex_cuts.h"
 #include "mesh/classified_tet_mesh.h"
+#include "mesh/poly_mesh.h"
 
 namespace polydual {
 
@@ -31,6 +32,15 @@ struct CutTopology {
   bool is_cut(TriId f) const { return active && tri_mask[f.idx] != 0; }
   bool cut_by(TriId f, VertexId v) const { return active && cuts->cuts(v, f); }
 };
+
+// Whether the point made from primal entity o (PolyMesh::point_origin) is
+// pinned by a whole-cut vertex (VertexCuts::whole): o has such a vertex. A
+// pinned point sits at barycentre(m, o) and is never merged or collapsed.
+bool pinned(const ClassifiedTetMesh& m, const VertexCuts* cuts, PointOrigin o);
+// The barycentre of primal entity o: the vertex, the edge's midpoint, the
+// triangle's centroid as a + (b-a)/3 + (c-a)/3 (exactly in an axis-aligned
+// plane of the triangle), the tet's centroid.
+Point3 barycentre(const ClassifiedTetMesh& m, PointOrigin o);
 
 // Checks the cut sets against the mesh (sizes, increasing ids, each triangle
 // through its vertex and on no model face): InputError naming the mesh's

@@ -33,6 +33,9 @@ struct DualDraft {
   // faces with a model point: bounded fans and caps); the cleanup walks only
   // their loops for short edges.
   std::vector<std::uint32_t> scan_faces;
+  // Per point (empty: none): pinned by a whole-cut vertex (dual/vertex_cuts.h),
+  // never collapsed.
+  std::vector<char> pinned;
   // Absolute length (model units) below which an edge between two points of
   // equal classification is collapsed; 0: no collapse.
   double collapse_length = 0;

@@ -22,8 +22,19 @@ struct VertexCuts {
   // containing v and on no model face. Empty `off`: no cuts at all.
   std::vector<std::uint32_t> off;
   std::vector<TriId> tri;
+  // Per vertex (empty: none): v is cut whole, at every interior triangle of
+  // its star (split/cuts.h fallback_cuts), so it has one cell per tet. The
+  // points of such a star (centres of the tets and triangles through v, the
+  // midpoints of its edges, v itself) are placed at the barycentres of their
+  // entities, never merged or collapsed, and every edge of v is a stop edge:
+  // each cell of v is then the barycentric region {x in t : lambda_v(x) >=
+  // lambda_w(x) for every vertex w of t}, a convex polytope with planar faces
+  // (proofs/dual_cuts.md, C5), whatever the neighbours' points.
+  std::vector<char> whole;
 
-  bool empty() const { return tri.empty(); }
+  bool is_whole(VertexId v) const { return v.idx < whole.size() && whole[v.idx] != 0; }
+  bool any_whole() const { return std::find(whole.begin(), whole.end(), char(1)) != whole.end(); }
+  bool empty() const { return tri.empty() && !any_whole(); }
   std::span<const TriId> of(VertexId v) const {
     if (off.empty()) return {};
     return {tri.data() + off[v.idx], tri.data() + off[v.idx + 1]};
@@ -55,13 +66,18 @@ struct VertexCuts {
     for (const auto& p : pairs) c.tri.push_back(p.second);
     return c;
   }
-  // The union of two cut sets of one mesh.
+  // The union of two cut sets of one mesh (a vertex is whole if it is in either).
   static VertexCuts merged(std::size_t num_vertices, const VertexCuts& a, const VertexCuts& b) {
     std::vector<std::pair<VertexId, TriId>> pairs;
     for (const VertexCuts* c : {&a, &b})
       for (std::size_t v = 0; v + 1 < c->off.size(); ++v)
         for (TriId f : c->of(VertexId(v))) pairs.emplace_back(VertexId(v), f);
-    return from_pairs(num_vertices, std::move(pairs));
+    VertexCuts out = from_pairs(num_vertices, std::move(pairs));
+    if (a.any_whole() || b.any_whole()) {
+      out.whole.assign(num_vertices, 0);
+      for (std::size_t v = 0; v < num_vertices; ++v) out.whole[v] = char(a.is_whole(VertexId(v)) || b.is_whole(VertexId(v)));
+    }
+    return out;
   }
 };
 

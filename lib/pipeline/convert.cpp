@@ -72,52 +72,47 @@ std::vector<VertexId> internal_of_input(const ClassifiedTetMesh& m) {
 }
 
 // State of the split loop (split/split.h): per primal vertex (internal
-// numbering) its escalation level (0: free-edge cuts or none, 1: plane cuts,
-// 2: fallback) and the cause it was first cut for.
+// numbering) whether it is cut whole (the fallback, one cell per tet) and the
+// cause it was first cut for.
 struct SplitState {
   VertexCuts free_edge, cuts;  // cuts: the union used by the current dual
-  std::vector<std::uint8_t> level;
+  std::vector<char> whole;
   std::vector<CutCause> cause;
   std::vector<VertexId> internal_of_input;  // cell_primal (input numbering) -> internal
 };
 
-// Raises the level of every vertex of an invalid cell below the fallback;
-// false when none could be raised.
+// Marks whole the vertex of every invalid cell; false when all already were.
 bool escalate(SplitState& st, const ClassifiedTetMesh& m, const PolyMesh& mesh, const CheckResult& check) {
   bool raised = false;
   for (std::size_t c = 0; c < check.verdicts.size(); ++c) {
     if (check.verdicts[c].valid) continue;
     const VertexId v = st.internal_of_input[mesh.cell_primal[c].idx];
-    if (st.level[v.idx] >= 2) continue;
-    ++st.level[v.idx];
+    if (st.whole[v.idx]) continue;
+    st.whole[v.idx] = 1;
     if (st.cause[v.idx] == CutCause::None) st.cause[v.idx] = invalid_cause(m, v);
     raised = true;
   }
   return raised;
 }
 
-// The union of the free-edge cuts and the cuts of every raised vertex.
+// The union of the free-edge cuts and the whole cuts of the marked vertices.
 VertexCuts union_of_cuts(const SplitState& st, const ClassifiedTetMesh& m) {
-  std::vector<VertexId> plane, fallback;
-  for (std::size_t v = 0; v < st.level.size(); ++v) {
-    if (st.level[v] == 1) plane.push_back(VertexId(v));
-    if (st.level[v] == 2) fallback.push_back(VertexId(v));
-  }
-  const VertexCuts a = VertexCuts::merged(m.num_vertices(), st.free_edge, plane_cuts(m, plane));
-  return VertexCuts::merged(m.num_vertices(), a, fallback_cuts(m, fallback));
+  std::vector<VertexId> whole;
+  for (std::size_t v = 0; v < st.whole.size(); ++v)
+    if (st.whole[v]) whole.push_back(VertexId(v));
+  return VertexCuts::merged(m.num_vertices(), st.free_edge, fallback_cuts(m, whole));
 }
 
-// One round: rebuild with the union of cuts, warm start from r.mesh,
-// optimise, check (verdicts only). Returns the round's record.
-Json split_round(ConvertResult& r, SplitState& st, const PipelineParams& params, const ConvertHooks& hooks) {
+// One round: rebuild with the union of cuts, the points not pinned by a whole
+// vertex warm-started from r.mesh (the previous positions), check (verdicts
+// only). Returns the round's record.
+Json split_round(ConvertResult& r, SplitState& st, const PipelineParams& params) {
   st.cuts = union_of_cuts(st, r.primal);
   PolyMesh fresh = build_dual(r.primal, params.dual, nullptr, &st.cuts);
   Json j = Json::object();
-  j.set("vertices_cut", st.cuts.num_vertices_cut());
+  j.set("vertices_whole", std::size_t(std::count(st.whole.begin(), st.whole.end(), char(1))));
   j.set("cells", fresh.num_cells());
-  j.set("points_warm_started", warm_start(fresh, r.mesh));
-  if (params.optim.method != OptimParams::Method::None)
-    j.set("optimize", optimize(fresh, &r.primal, params.optim, hooks.progress).to_json());
+  j.set("points_warm_started", warm_start(fresh, r.mesh, r.primal, st.cuts));
   r.mesh = std::move(fresh);
   r.check = check_mesh(r.mesh, &r.primal, false);
   j.set("invalid_after", r.check.invalid_cells);
@@ -144,11 +139,14 @@ Json split_causes(const ConvertResult& r, const SplitState& st) {
   return j;
 }
 
-// The rounds of the split loop after the first optimised dual (split/split.h).
-// A round may leave more invalid cells than the one before (new points in the
-// neighbours' faces, a warm start that no longer fits): the mesh with the
-// fewest invalid cells is kept (the earliest among equals), so the split
-// never makes the result worse (proofs/split.md, T2).
+// The rounds of the split loop after the first optimised dual (split/split.h):
+// the vertices of the cells still invalid are cut whole, the dual rebuilt and
+// checked, until no cell is invalid or every invalid cell is already a
+// barycentric corner (convex by construction: only rounding could leave one
+// invalid) or max_rounds. The mesh with the fewest invalid cells is kept (the
+// earliest among equals), so the split never makes the result worse
+// (proofs/split.md, T2); if it is a split one it is optimised once more (the
+// optimiser keeps every valid cell valid, exactly).
 void run_split(ConvertResult& r, SplitState& st, const PipelineParams& params, const ConvertHooks& hooks) {
   run_stage(r.report, hooks, "split", [&](Json& stats) {
     Json rounds = Json::array();
@@ -159,7 +157,7 @@ void run_split(ConvertResult& r, SplitState& st, const PipelineParams& params, c
     for (int k = 0; k < params.split.max_rounds && r.check.invalid_cells > 0; ++k) {
       throw_if_interrupted();
       if (!escalate(st, r.primal, r.mesh, r.check)) break;
-      rounds.push(split_round(r, st, params, hooks));
+      rounds.push(split_round(r, st, params));
       if (r.check.invalid_cells < best_check.invalid_cells) {
         best_mesh = r.mesh;
         best_check = r.check;
@@ -170,8 +168,12 @@ void run_split(ConvertResult& r, SplitState& st, const PipelineParams& params, c
     r.mesh = std::move(best_mesh);
     r.check = std::move(best_check);
     st.cuts = std::move(best_cuts);
-    if (!st.cuts.empty()) r.mesh.cell_origin = cut_cell_origins(r.primal, st.cuts, r.mesh);
     stats = Json::object();
+    if (best_round > 0 && params.optim.method != OptimParams::Method::None) {
+      stats.set("optimize", optimize(r.mesh, &r.primal, params.optim, hooks.progress).to_json());
+      r.check = check_mesh(r.mesh, &r.primal, false);
+    }
+    if (!st.cuts.empty()) r.mesh.cell_origin = cut_cell_origins(r.primal, st.cuts, r.mesh);
     stats.set("rounds", rounds);
     stats.set("kept_round", best_round);
     stats.set("free_edge_vertices", st.free_edge.num_vertices_cut());
@@ -227,9 +229,9 @@ void run_pipeline(ConvertResult& r, const TetSoup& soup, const PipelineParams& p
       return c;
     });
     st.cuts = st.free_edge;
-    st.level.assign(r.primal.num_vertices(), 0);
+    st.whole.assign(r.primal.num_vertices(), 0);
     st.cause.assign(r.primal.num_vertices(), CutCause::None);
-    for (std::size_t v = 0; v < st.level.size(); ++v)
+    for (std::size_t v = 0; v < st.whole.size(); ++v)
       if (!st.free_edge.of(VertexId(v)).empty()) st.cause[v] = CutCause::FreeEdge;
     st.internal_of_input = internal_of_input(r.primal);
   }

@@ -16,7 +16,7 @@ const char* cut_cause_name(CutCause c) {
     case CutCause::SheetCrossing: return "sheet_crossing";
     case CutCause::ConcaveEdge: return "concave_edge";
     case CutCause::ConcaveVertex: return "concave_vertex";
-    case CutCause::Other: return "other";
+    case CutCause::Other: return "invalid_after_optimisation";
   }
   return "none";
 }
@@ -316,7 +316,12 @@ VertexCuts fallback_cuts(const ClassifiedTetMesh& m, std::span<const VertexId> v
     for (std::size_t slot = 0; slot < s.tri.size(); ++slot)
       if (s.tri[slot].valid() && !s.model[slot] && s.nb[slot] >= 0) pairs.emplace_back(v, s.tri[slot]);
   }
-  return VertexCuts::from_pairs(m.num_vertices(), std::move(pairs));
+  VertexCuts c = VertexCuts::from_pairs(m.num_vertices(), std::move(pairs));
+  if (!vertices.empty()) {
+    c.whole.assign(m.num_vertices(), 0);
+    for (VertexId v : vertices) c.whole[v.idx] = 1;
+  }
+  return c;
 }
 
 CutCause invalid_cause(const ClassifiedTetMesh& m, VertexId v) {

@@ -44,8 +44,10 @@ VertexCuts free_edge_cuts(const ClassifiedTetMesh& m, std::vector<VertexId>* sli
 // where the faces were concave.
 VertexCuts plane_cuts(const ClassifiedTetMesh& m, std::span<const VertexId> vertices);
 
-// Every interior triangle through each given vertex: one cell per tet of its
-// star (the corner of a tet), the end of the escalation.
+// Every interior triangle through each given vertex, and the vertex marked
+// whole (VertexCuts::whole): one cell per tet of its star, the barycentric
+// corner of the tet, convex by construction (proofs/dual_cuts.md, C5). The
+// split loop's certificate.
 VertexCuts fallback_cuts(const ClassifiedTetMesh& m, std::span<const VertexId> vertices);
 
 // The cause of an invalid cell of v that has no free-edge cut, by v's class:

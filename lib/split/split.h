@@ -5,11 +5,14 @@
 // (split/cuts.h, dual/vertex_cuts.h). The loop (pipeline/convert.cpp, proof
 // and guarantees in proofs/split.md):
 //   round 0: free-edge cuts for every slit vertex before the first dual;
-//   round k: vertices of cells still invalid after optimise + check escalate
-//            one level (plane cuts, then fallback: one cell per tet), the dual
-//            is rebuilt with the union of all cuts, warm-started from the
-//            previous optimised positions (split/warm_start.h), optimised and
-//            checked again; at most max_rounds rounds.
+//   round k: the vertices of cells still invalid after optimise + check are
+//            cut whole (the fallback: one cell per tet, the barycentric corner,
+//            convex by construction: proofs/dual_cuts.md C5), the dual is
+//            rebuilt with the union of all cuts, the other points
+//            warm-started from the previous positions (split/warm_start.h),
+//            and checked; a neighbour that the barycentric points turn
+//            invalid is cut whole in the next round. The mesh kept is then
+//            optimised once more. At most max_rounds rounds.
 #pragma once
 #include "core/json.h"
 
@@ -18,18 +21,15 @@ namespace polydual {
 struct SplitParams {
   // Split (default on). Off (`--no-split`): the dual without cuts, as before.
   bool enabled = true;
-  // Most rebuild rounds after the first optimised dual. Two escalation levels
-  // exist (plane, fallback), so 2 rounds reach the fallback everywhere.
-  // Default 0 (`--split-rounds N` to try them): on every mesh measured so far
-  // the rounds ended with as many invalid cells as round 0 or more (the
-  // points they insert into the neighbours' faces invalidate neighbours; the
-  // loop keeps the best round), at the cost of one more optimisation each.
-  // Range [0, kMaxRounds].
-  int max_rounds = 0;
+  // Most rebuild rounds after the first optimised dual; 0: free-edge cuts
+  // only. Each round cuts at least one more vertex whole, so the loop ends;
+  // on the meshes measured it needs a few rounds (the ring of neighbours the
+  // barycentric points disturb). Range [0, kMaxRounds].
+  int max_rounds = 64;
   // Any cell still invalid at the end is an error (InputError naming each
   // cell, its primal vertex and its classification); nothing is written.
   bool require_valid = false;
-  static constexpr int kMaxRounds = 16;
+  static constexpr int kMaxRounds = 100000;
 
   // Throws UsageError naming the bad field and its range.
   void validate() const;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <unordered_map>
 
+#include "dual/cut_topology.h"
 #include "dual/sides.h"
 
 namespace polydual {
@@ -11,7 +12,7 @@ namespace {
 std::uint64_t origin_key(PointOrigin o) { return (std::uint64_t(std::uint8_t(o.dim)) << 32) | o.id; }
 }  // namespace
 
-std::size_t warm_start(PolyMesh& fresh, const PolyMesh& old) {
+std::size_t warm_start(PolyMesh& fresh, const PolyMesh& old, const ClassifiedTetMesh& m, const VertexCuts& cuts) {
   if (fresh.point_origin.size() != fresh.points.size() || old.point_origin.size() != old.points.size()) return 0;
   constexpr std::uint32_t kShared = 0xffffffffu;
   std::unordered_map<std::uint64_t, std::uint32_t> where;
@@ -23,7 +24,7 @@ std::size_t warm_start(PolyMesh& fresh, const PolyMesh& old) {
   }
   std::size_t moved = 0;
   for (std::size_t i = 0; i < fresh.points.size(); ++i) {
-    if (fresh.point_origin[i].dim < 0) continue;
+    if (fresh.point_origin[i].dim < 0 || pinned(m, &cuts, fresh.point_origin[i])) continue;
     const auto it = where.find(origin_key(fresh.point_origin[i]));
     if (it == where.end() || it->second == kShared) continue;
     fresh.points[i] = old.points[it->second];

@@ -14,7 +14,9 @@ namespace polydual {
 // names exactly one point of `old` to that point's position; new points and
 // origins shared by several old points keep their initial positions. Returns
 // the number of points moved. Both meshes must carry point_origin (else 0).
-std::size_t warm_start(PolyMesh& fresh, const PolyMesh& old);
+// Points pinned by a whole-cut vertex of `cuts` (dual/cut_topology.h) keep
+// their barycentric positions.
+std::size_t warm_start(PolyMesh& fresh, const PolyMesh& old, const ClassifiedTetMesh& m, const VertexCuts& cuts);
 
 // cell_origin of a dual built with `cuts`: for each cell, the cell of the dual
 // without cuts that holds the same tets of the same primal vertex (each cut
