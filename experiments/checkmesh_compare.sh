@@ -10,14 +10,21 @@ here="$(cd "$(dirname "$0")" && pwd)"
 bin="${1:-$here/../build/polydual}"
 tets="${2:-20000}"
 out="${3:-$here/checkmesh}"
-domains="${4:-cube twomat fichera fracture network fins}"
+# A domain is a built-in one (polydual generate) or a .geo file meshed by the
+# gmsh command (a model nobody here meshed; its own mesh sizes).
+domains="${4:-cube twomat fichera fracture network fins $here/../tests/data/geo/fractures3.geo $here/../tests/data/geo/piston_fins.geo}"
 export WM_PROJECT_DIR=/usr/share/openfoam
 mkdir -p "$out"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-for d in $domains; do
+for src in $domains; do
+  d=$(basename "$src" .geo)
   w="$work/$d"; mkdir -p "$w"
-  "$bin" generate "$d" --tets "$tets" -o "$w/in.msh" 2>/dev/null || { echo "$d: generate failed"; continue; }
+  if [[ "$src" == *.geo ]]; then
+    gmsh -3 "$src" -format msh4 -o "$w/in.msh" > "$w/gmsh.log" 2>&1 || { echo "$d: gmsh failed"; continue; }
+  else
+    "$bin" generate "$d" --tets "$tets" -o "$w/in.msh" 2>/dev/null || { echo "$d: generate failed"; continue; }
+  fi
   "$bin" convert "$w/in.msh" -o "$w/pd" --format foam --json --quiet > "$out/${d}_polydual.json" 2>&1
   checkMesh -case "$w/pd" -allTopology -allGeometry > "$out/${d}_polydual.log" 2>&1
   gmsh "$w/in.msh" -save -format msh22 -o "$w/in22.msh" > /dev/null 2>&1

@@ -11,7 +11,8 @@ import os
 import re
 import sys
 
-DOMAINS = ["cube", "twomat", "fichera", "fracture", "network", "fins"]
+DOMAINS = ["cube", "twomat", "fichera", "fracture", "network", "fins",
+           "fractures3", "piston_fins"]  # the last two: tests/data/geo models meshed by gmsh itself
 VARIANTS = [("polydual", "polydual"), ("pdm", "polyDualMesh"), ("pdm_concave", "polyDualMesh -concaveMultiCells")]
 
 
@@ -44,7 +45,8 @@ def fmt(v):
 
 
 def main(log_dir, tets):
-    print(f"checkMesh -allTopology -allGeometry on the domains at ~{tets} tets "
+    print(f"checkMesh -allTopology -allGeometry on the domains at ~{tets} tets and on two models meshed by "
+          "gmsh from tests/data/geo (fractures3: three crossing fractures; piston_fins: two wall fins) "
           "(experiments/checkmesh_compare.sh; logs in experiments/checkmesh/).\n")
     print("| domain | mesh | cells | negative volumes | incorrectly oriented face pyramids | "
           "faces with bad decomposition tets (face tets) | concave cells | "

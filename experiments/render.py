@@ -325,8 +325,10 @@ def count_invalid(grid):
 
 
 def render(grid, png, color_by, title, bounds, invalid_overlay=True, size=(900, 760),
-           inner=None):
-    """Surface with edges. color_by: 'valid' (green/red) or 'region' (materials)."""
+           inner=None, highlight=None):
+    """Surface with edges. color_by: 'valid' (green/red) or 'region' (materials).
+    highlight: a cell array name; its nonzero cells are drawn opaque (orange)
+    over the faded mesh, so cells inside the cut are seen too."""
     vtk = vtk_modules()
     ren = vtk.vtkRenderer()
     ren.SetBackground(1, 1, 1)
@@ -381,13 +383,19 @@ def render(grid, png, color_by, title, bounds, invalid_overlay=True, size=(900, 
         ai.GetProperty().SetEdgeColor(0.3, 0.15, 0)
         ren.AddActor(ai)
         p.SetOpacity(0.25)
+    overlay = None
     if color_by == "valid" and invalid_overlay:
-        # Invalid cells hidden inside the cut are drawn again as a translucent-free
-        # overlay on top of a faded mesh, so none is missed.
+        overlay = ("valid", lambda v: v == 0, (0.9, 0.1, 0.1), (0.3, 0, 0))
+    if highlight is not None:
+        overlay = (highlight, lambda v: v != 0, (0.95, 0.55, 0.15), (0.3, 0.15, 0))
+    if overlay is not None:
+        # Invalid (or highlighted) cells hidden inside the cut are drawn again as
+        # an opaque overlay on top of a faded mesh, so none is missed.
         from vtk.util import numpy_support
-        a = grid.GetCellData().GetArray("valid")
+        name, pick, colour, edge = overlay
+        a = grid.GetCellData().GetArray(name)
         if a is not None:
-            bad = (numpy_support.vtk_to_numpy(a) == 0).nonzero()[0]
+            bad = pick(numpy_support.vtk_to_numpy(a)).nonzero()[0]
             if len(bad):
                 ids = vtk.vtkIdList()
                 for i in bad:
@@ -403,9 +411,9 @@ def render(grid, png, color_by, title, bounds, invalid_overlay=True, size=(900, 
                 m2.ScalarVisibilityOff()
                 a2 = vtk.vtkActor()
                 a2.SetMapper(m2)
-                a2.GetProperty().SetColor(0.9, 0.1, 0.1)
+                a2.GetProperty().SetColor(*colour)
                 a2.GetProperty().EdgeVisibilityOn()
-                a2.GetProperty().SetEdgeColor(0.3, 0, 0)
+                a2.GetProperty().SetEdgeColor(*edge)
                 ren.AddActor(a2)
                 p.SetOpacity(0.35)
     txt = vtk.vtkTextActor()
@@ -445,7 +453,8 @@ def compose(pngs, titles, out_png, suptitle):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     import matplotlib.image as mpimg
-    fig, axes = plt.subplots(1, len(pngs), figsize=(4.2 * len(pngs), 4.0), dpi=130)
+    fig, axes = plt.subplots(1, len(pngs), figsize=(4.2 * len(pngs), 4.0), dpi=130, squeeze=False)
+    axes = axes[0]
     for ax, p, t in zip(axes, pngs, titles):
         ax.imshow(mpimg.imread(p))
         ax.set_title(t, fontsize=10)

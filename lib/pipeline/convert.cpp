@@ -280,7 +280,16 @@ ConvertResult convert(const TetSoup& soup, const PipelineParams& params, const C
 
 Json write_result(const ConvertResult& r, const std::string& path, PolyFormat format,
                   const PolyWriteOptions& options) {
-  return write_poly_mesh(r.mesh, path, format, verdict_fields(r.check.verdicts), options);
+  std::vector<CellField> fields = verdict_fields(r.check.verdicts);
+  // A split mesh: each cell's uncut cell ("split_from", PolyMesh::cell_origin),
+  // so that a viewer can show which cells were split and into what.
+  if (!r.mesh.cell_origin.empty()) {
+    std::vector<std::int32_t> from(r.mesh.cell_origin.size());
+    for (std::size_t c = 0; c < from.size(); ++c)
+      from[c] = r.mesh.cell_origin[c].valid() ? std::int32_t(r.mesh.cell_origin[c].idx) : -1;
+    fields.push_back(CellField{"split_from", std::move(from)});
+  }
+  return write_poly_mesh(r.mesh, path, format, std::move(fields), options);
 }
 
 ConvertResult convert_file(const std::string& in, const std::string& out, PolyFormat format,

@@ -58,7 +58,8 @@ struct ConvertHooks {
 // and the place) and UsageError for bad params.
 ConvertResult convert(const TetSoup& soup, const PipelineParams& params, const ConvertHooks& hooks = {});
 
-// Writes r.mesh with its verdicts as cell data ("valid", "bad_tets").
+// Writes r.mesh with its verdicts as cell data ("valid", "bad_tets") and, for
+// a split mesh, each cell's uncut cell ("split_from").
 Json write_result(const ConvertResult& r, const std::string& path, PolyFormat format,
                   const PolyWriteOptions& options = {});
 
