@@ -286,6 +286,12 @@ TEST(Predicates, StarSignIsExactWherePlainDoublesFail) {
     const int truth = rational_star_sign(a, b, face, cell);
     const Sign exact = decomposition_tet_sign(a, b, face, cell);
     ASSERT_EQ(static_cast<int>(exact), truth) << "trial " << trial;
+    // The summed filter (L9d) about the cell's first point and about a far
+    // origin: the same exact sign.
+    for (const Point3& o : {cell[0], Point3{1e7, -3e6, 2.5e5}}) {
+      const PointSums fs = point_sums(face, o), cs = point_sums(cell, o);
+      ASSERT_EQ(static_cast<int>(decomposition_tet_sign(a, b, face, cell, fs, cs)), truth) << "trial " << trial;
+    }
     wrong_double += static_cast<int>(decomposition_tet_sign_inexact(a, b, face, cell)) != truth;
   }
   exact_path = int(predicate_counters().star_exact.load());

@@ -54,6 +54,25 @@ void triangle_circumcenter_barycentric_signs(const Point3& a, const Point3& b, c
 Sign decomposition_tet_sign(const Point3& a, const Point3& b, std::span<const Point3> face,
                             std::span<const Point3> cell);
 
+// Sums of a point set relative to an origin o (a double point, the same for a
+// cell and its faces): s = sum fl(p - o), abs = sum |fl(p - o)|, n points.
+// Computed once per cell and once per face, they make the first filter of the
+// star test O(1) per decomposition tet instead of O(|face| + |cell|).
+struct PointSums {
+  Point3 origin;
+  double sx = 0, sy = 0, sz = 0;
+  double ax = 0, ay = 0, az = 0;
+  std::size_t n = 0;
+};
+PointSums point_sums(std::span<const Point3> pts, const Point3& origin);
+
+// EXACT, the same sign as decomposition_tet_sign(a, b, face, cell): a first
+// static filter from the sums (fs of face, cs of cell, both about one origin;
+// proofs/star_filter.md, L9d), then on doubt decomposition_tet_sign itself
+// (its own filter, then exact).
+Sign decomposition_tet_sign(const Point3& a, const Point3& b, std::span<const Point3> face,
+                            std::span<const Point3> cell, const PointSums& fs, const PointSums& cs);
+
 // The same expression in plain doubles: NOT exact. For benchmarks and for the
 // adversarial tests that show why the exact version exists.
 Sign decomposition_tet_sign_inexact(const Point3& a, const Point3& b, std::span<const Point3> face,

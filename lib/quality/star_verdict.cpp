@@ -18,17 +18,20 @@ CellVerdict star_shaped_verdict(const MeshStencil& s, std::uint32_t c,
   for (PointId p : cp) scratch.push_back(points[p.idx]);
   const std::size_t m = scratch.size();
   CellVerdict v;
+  if (m == 0) return v;
+  const PointSums cs = point_sums({scratch.data(), m}, scratch[0]);
   for (std::uint32_t j = s.cell_loop_off[c]; j < s.cell_loop_off[c + 1]; ++j) {
     const auto loop = s.loop(j);
     scratch.resize(m);
     for (PointId p : loop) scratch.push_back(points[p.idx]);
     const std::span<const Point3> cell(scratch.data(), m);
     const std::span<const Point3> face(scratch.data() + m, loop.size());
+    const PointSums fs = point_sums(face, cs.origin);
     for (std::size_t i = 0; i < loop.size(); ++i) {
       const Point3& a = face[i];
       const Point3& b = face[(i + 1) % loop.size()];
       ++v.total_tets;
-      if (decomposition_tet_sign(a, b, face, cell) != Sign::Positive) {
+      if (decomposition_tet_sign(a, b, face, cell, fs, cs) != Sign::Positive) {
         v.valid = false;
         ++v.bad_tets;
         if (stop_at_first_bad) return v;
@@ -85,6 +88,8 @@ CellVerdict verdict_from_mesh(const PolyMesh& mesh, std::uint32_t c, MeshScratch
   }
   const std::size_t m = s.points.size();
   CellVerdict v;
+  if (m == 0) return v;
+  const PointSums cs = point_sums({s.points.data(), m}, s.points[0]);
   for (HalfFace h : cell) {
     const auto f = mesh.face(h.face());
     const std::size_t k = f.size();
@@ -92,9 +97,10 @@ CellVerdict verdict_from_mesh(const PolyMesh& mesh, std::uint32_t c, MeshScratch
     for (std::size_t i = 0; i < k; ++i) s.points.push_back(mesh.points[(h.side() == 0 ? f[i] : f[k - 1 - i]).idx]);
     const std::span<const Point3> cell_pts(s.points.data(), m);
     const std::span<const Point3> face(s.points.data() + m, k);
+    const PointSums fs = point_sums(face, cs.origin);
     for (std::size_t i = 0; i < k; ++i) {
       ++v.total_tets;
-      if (decomposition_tet_sign(face[i], face[(i + 1) % k], face, cell_pts) != Sign::Positive) {
+      if (decomposition_tet_sign(face[i], face[(i + 1) % k], face, cell_pts, fs, cs) != Sign::Positive) {
         v.valid = false;
         ++v.bad_tets;
       }
