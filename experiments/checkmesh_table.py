@@ -59,7 +59,10 @@ def main(log_dir, tets):
                 continue
             r = parse(open(path, errors="replace").read())
             if r is None:
-                print(f"| {d} | {label} | checkMesh did not reach the geometry checks | | | | | | | | |")
+                text = open(path, errors="replace").read()
+                why = ("checkMesh crashed (segmentation fault) in its topology checks" if "sigSegv" in text
+                       else "checkMesh did not reach the geometry checks")
+                print(f"| {d} | {label} | {why} | | | | | | | | |")
                 continue
             print(f"| {d} | {label} | {r['cells']} | {r['negative']} | {r['face_tets']} | {r['low_tets']} | {r['concave']} | "
                   f"{fmt(r['nonorth_max'])} | {fmt(r['nonorth_mean'])} | {fmt(r['skew_max'])} | {r['errors']} |")
