@@ -18,6 +18,7 @@
 #include "optim/context.h"
 #include "optim/lagged_objective.h"
 #include "optim/objective.h"
+#include "optim/planarity.h"
 #include "quality/star_verdict.h"
 
 namespace polydual::optim_detail {
@@ -59,10 +60,15 @@ class VertexNewton {
       };
       const bool lagged = prm.derivatives == OptimParams::Derivatives::Lagged;
       if (lagged) lagged_.build(ctx_.stencil, pts, ctx_.V0.data(), prm.metric, p);
+      // Face flatness (optim/planarity.h), weighted by prm.planarity: added to
+      // the value, and its derivatives by central differences to g and H.
+      const bool flat = prm.planarity > 0;
+      if (flat) planarity_.build(ctx_.stencil, p);
       auto eval = [&](const Point3& x) {
-        if (lagged) return lagged_.value(x, prm.c);
+        const double e = flat ? prm.planarity * planarity_.value(ctx_.stencil, pts, x) : 0.0;
+        if (lagged) return lagged_.value(x, prm.c) + e;
         const double xa[3] = {x.x, x.y, x.z};
-        return obj(xa);
+        return obj(xa) + e;
       };
       auto f = [&](const double* t) { return eval(x_of(t)); };
       const double zero[3] = {0, 0, 0};
@@ -71,12 +77,14 @@ class VertexNewton {
       Mat H = Mat::Identity();
       if (prm.derivatives == OptimParams::Derivatives::Analytic || lagged) {
         f0 = analytic_derivatives(p, B, k, g, H);
+        if (flat) add_planarity(x_of, k, h, prm.planarity, f0, g, H);
+      } else if (prm.derivatives == OptimParams::Derivatives::FiniteDifference) {
+        f0 = f(zero);  // the planarity term is in f already
+        fd_derivatives(f, k, h, f0, g, H);
       } else {
-        f0 = f(zero);
-        if (prm.derivatives == OptimParams::Derivatives::FiniteDifference)
-          fd_derivatives(f, k, h, f0, g, H);
-        else
-          exact_derivatives(obj, o, B, k, h, g, H);
+        f0 = f(zero) - (flat ? prm.planarity * planarity_.value(ctx_.stencil, pts, o) : 0.0);
+        exact_derivatives(obj, o, B, k, h, g, H);
+        if (flat) add_planarity(x_of, k, h, prm.planarity, f0, g, H);
       }
       if (!g.allFinite() || !H.allFinite()) break;
       if (g.norm() * ell <= 1e-12 * std::fabs(f0)) break;  // stationary
@@ -144,6 +152,23 @@ class VertexNewton {
       for (int j = 0; j < k; ++j) H(i, j) = dot(B[i], HB[j]);
     }
     return f0;
+  }
+
+  // f0, g, H += w x (the planarity term, its central-difference derivatives).
+  template <class X>
+  void add_planarity(const X& x_of, int k, double h, double w, double& f0, Vec& g, Mat& H) const {
+    const Point3* pts = ctx_.mesh.points.data();
+    auto e = [&](const double* t) { return planarity_.value(ctx_.stencil, pts, x_of(t)); };
+    const double zero[3] = {0, 0, 0};
+    const double e0 = e(zero);
+    Vec ge = Vec::Zero();
+    Mat he = Mat::Zero();
+    fd_derivatives(e, k, h, e0, ge, he);
+    f0 += w * e0;
+    for (int i = 0; i < k; ++i) {
+      g[i] += w * ge[i];
+      for (int j = 0; j < k; ++j) H(i, j) += w * he(i, j);
+    }
   }
 
   // Central differences (the paper): g_i = (f+i - f-i)/2h, H_ii = (f+i - 2f0 + f-i)/h^2,
@@ -226,6 +251,7 @@ class VertexNewton {
   Context& ctx_;
   std::vector<Point3> scratch_;
   LaggedObjective lagged_;  // rebuilt at every Newton step of a Lagged visit
+  PlanarityTerm planarity_;  // the loops around the visited point (planarity > 0)
 };
 
 // Independent sets for a parallel Gauss-Seidel: the points of one pass (surface

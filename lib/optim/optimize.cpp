@@ -145,6 +145,10 @@ void OptimParams::validate() const {
   check_param("OptimParams::fd_step", "relative to cbrt(V0)", {0, kMaxFdStep, true}, fd_step);
   check_param("OptimParams::global_iterations_per_round", "iterations", {1, double(kMaxIterLimit)},
               global_iterations_per_round);
+  check_param("OptimParams::planarity", "weight of the face-flatness term", {0, kMaxPlanarity}, planarity);
+  if (planarity > 0 && method != Method::Local && method != Method::None)
+    throw UsageError(std::string("OptimParams::planarity: the face-flatness term is in the local scheme only, not in '") +
+                     method_name(method) + "' (use --optimize local)");
 }
 
 Json OptimParams::to_json() const {
@@ -160,6 +164,7 @@ Json OptimParams::to_json() const {
   j.set("untangle_sweeps", untangle_sweeps);
   j.set("max_halvings", max_halvings);
   j.set("fd_step", fd_step);
+  j.set("planarity", planarity);
   j.set("global_iterations_per_round", global_iterations_per_round);
   return j;
 }

@@ -67,6 +67,12 @@ struct OptimParams {
   // Finite-difference step, relative to the local length cbrt(V0). Default 1e-4
   // (~eps^(1/4): balances truncation and rounding in second differences).
   double fd_step = 1e-4;
+  // Local: weight W of the face-flatness term added to each point's local
+  // objective (optim/planarity.h; the paper's future work). Default 0: the
+  // objective of the paper, unchanged. Derivatives of the term by central
+  // differences (step fd_step). Global and Untangle refuse W > 0.
+  double planarity = 0;
+  static constexpr double kMaxPlanarity = 1000.0;
   // Global: L-BFGS iterations per round. Default 50.
   int global_iterations_per_round = 50;
 

@@ -66,15 +66,20 @@ double plane_deviation(std::span<const Point3> p) {
 
 }  // namespace
 
-FaceFlatness face_flatness(std::span<const Point3> p) {
-  FaceFlatness f;
-  if (p.size() < 3) return f;
+double flatness_ratio(std::span<const Point3> p) {
+  if (p.size() < 3) return 1;
   Vec3 S;
   Point3 c;
   area_and_centre(p, S, c);
   double actual = 0;
   for (std::size_t i = 0; i < p.size(); ++i) actual += 0.5 * norm(cross(p[(i + 1) % p.size()] - p[i], c - p[i]));
-  if (actual > 0) f.flatness = std::min(1.0, norm(S) / actual);
+  return actual > 0 ? std::min(1.0, norm(S) / actual) : 1.0;
+}
+
+FaceFlatness face_flatness(std::span<const Point3> p) {
+  FaceFlatness f;
+  if (p.size() < 3) return f;
+  f.flatness = flatness_ratio(p);
   f.deviation = plane_deviation(p);
   return f;
 }

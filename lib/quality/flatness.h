@@ -30,6 +30,8 @@ struct FaceFlatness {
 // Of the polygon (p_0 .. p_{n-1}), n >= 3. A polygon of zero actual area gives
 // flatness 1 and deviation 0 (nothing to measure).
 FaceFlatness face_flatness(std::span<const Point3> polygon);
+// Its flatness alone (no best-fit plane): cheap enough for an objective.
+double flatness_ratio(std::span<const Point3> polygon);
 
 struct FlatnessStats {
   std::size_t faces = 0;
