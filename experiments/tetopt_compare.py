@@ -187,6 +187,75 @@ def table_planarity(recs):
                "warped (<0.8)", "plane dev max", "plane dev mean", "optimise s"], rows)
 
 
+def face_flatness_values(vtu):
+    """OpenFOAM's flatness (projected / actual area, fan around the
+    area-weighted centre, as quality/flatness.cpp) of every face of a polydual
+    VTU, each face once (keyed by its sorted point ids)."""
+    import numpy as np
+    import vtk
+    from vtk.util import numpy_support
+    r = vtk.vtkXMLUnstructuredGridReader()
+    r.SetFileName(vtu)
+    r.Update()
+    g = r.GetOutput()
+    pts = numpy_support.vtk_to_numpy(g.GetPoints().GetData())
+    faces = numpy_support.vtk_to_numpy(g.GetFaces())
+    seen, out, i = set(), [], 0
+    for _ in range(g.GetNumberOfCells()):
+        nf = int(faces[i]); i += 1
+        for _ in range(nf):
+            n = int(faces[i]); ids = faces[i + 1:i + 1 + n]; i += 1 + n
+            key = tuple(sorted(ids.tolist()))
+            if key in seen:
+                continue
+            seen.add(key)
+            p = pts[ids]
+            m = p.mean(axis=0)
+            q = np.roll(p, -1, axis=0)
+            tri = 0.5 * np.cross(q - p, m - p)
+            S = tri.sum(axis=0)
+            s = np.linalg.norm(S)
+            if n == 3 or s == 0:
+                out.append(1.0)
+                continue
+            u = S / s
+            w = tri @ u
+            c = ((w[:, None] * (p + q + m) / 3.0).sum(axis=0) / w.sum()) if w.sum() != 0 else m
+            actual = 0.5 * np.linalg.norm(np.cross(q - p, c - p), axis=1).sum()
+            out.append(min(1.0, s / actual) if actual > 0 else 1.0)
+    return np.array(out)
+
+
+def flatness_figure(args, recs, out_png):
+    """Histograms of face flatness per planarity weight, one panel per domain."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    doms = sorted({r["domain"] for r in recs if r["variant"].startswith("planarity")},
+                  key=lambda d: DOMAINS.index(d) if d in DOMAINS else 99)
+    if not doms:
+        return None
+    fig, axes = plt.subplots(1, len(doms), figsize=(4.6 * len(doms), 3.6), dpi=120, squeeze=False)
+    for ax, d in zip(axes[0], doms):
+        for v, w in (("local", 0), ("planarity_10", 10), ("planarity_100", 100)):
+            r = next((x for x in recs if x["domain"] == d and x["variant"] == v), None)
+            if r is None:
+                continue
+            vtu = os.path.join(args.out, "meshes", f"{d}_{r['size']}_{v}.vtu")
+            if not os.path.exists(vtu):
+                continue
+            f = face_flatness_values(vtu)
+            ax.hist(f, bins=60, range=(0.8, 1.0), histtype="step", log=True, label=f"W = {w} (min {f.min():.3f})")
+        ax.set_title(f"{d}: face flatness (OpenFOAM)", fontsize=10)
+        ax.set_xlabel("projected / actual area")
+        ax.legend(fontsize=8, loc="upper left")
+    axes[0][0].set_ylabel("faces")
+    fig.tight_layout()
+    fig.savefig(out_png, metadata={"Software": None})
+    plt.close(fig)
+    return out_png
+
+
 def render(args):
     recs = load(args.out)
     tables = {"tetopt_pre": table_tetopt(recs), "local_global": table_local_global(recs), "flatness": table_flatness(recs),
@@ -218,6 +287,10 @@ def render(args):
                         "objective; flatness is OpenFOAM's (projected / actual area), plane deviation the largest\n"
                         "distance from the best-fit plane over the face's diameter; optimise s: wall seconds of the\n"
                         "stage on a shared 2-core machine.\n\n" + tables["planarity"])
+            png = flatness_figure(args, recs, os.path.join(REPO, "paper", "figures", "fig_flatness.png"))
+            if png:
+                with open(os.path.join(REPO, "paper", "planarity_tables.md"), "a") as f:
+                    f.write("\n![face flatness per weight](figures/fig_flatness.png)\n")
     for name, body in tables.items():
         print(f"## {name}\n{body}")
 
