@@ -2,6 +2,7 @@
 #pragma once
 #include <chrono>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "core/progress.h"
@@ -23,6 +24,7 @@ struct Context {
   QualityStats last_stats;                   // of the last record()
   OptimReport* report = nullptr;
   const ProgressFn* progress = nullptr;      // called after each record(); may be null
+  std::span<const char> seed_cells;          // optimize()'s; empty: every point starts active
 
   Context(PolyMesh& m, const ClassifiedTetMesh* primal, const OptimParams& p);
   double seconds() const;

@@ -319,7 +319,13 @@ void run_local(Context& ctx) {
   const bool untangle_only = prm.method == OptimParams::Method::Untangle;
   int untangle_left = ctx.report->iterations.back().invalid > 0 ? (untangle_only ? prm.max_iter : prm.untangle_sweeps) : 0;
   if (untangle_only && untangle_left == 0) return;
-  bool full_sweep = untangle_left == 0;
+  // Seeded (optimize()'s seed_cells): no full sweep; the seed cells count as
+  // changed in the sweep before the first, and the rule spreads from there.
+  const bool seeded = !ctx.seed_cells.empty();
+  if (seeded)
+    for (std::size_t c = 0; c < nc; ++c)
+      if (ctx.seed_cells[c]) last_change[c] = 0;
+  bool full_sweep = untangle_left == 0 && !seeded;
   double f_prev = ctx.report->iterations.back().objective;
   for (int sweep = 1; sweep <= prm.max_iter; ++sweep) {
     const bool untangling = untangle_left > 0;
@@ -366,7 +372,7 @@ void run_local(Context& ctx) {
       --untangle_left;
       if (rec.invalid == 0 || updates == 0) untangle_left = 0;
       if (untangle_only && untangle_left == 0) break;
-      full_sweep = untangle_left == 0;
+      full_sweep = untangle_left == 0 && !seeded;
       f_prev = rec.objective;
       continue;
     }

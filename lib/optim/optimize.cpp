@@ -85,11 +85,15 @@ void Context::basis(PointId p, Vec3 B[3]) const {
 }  // namespace optim_detail
 
 OptimReport optimize(PolyMesh& mesh, const ClassifiedTetMesh* primal, const OptimParams& params,
-                     const ProgressFn& progress) {
+                     const ProgressFn& progress, std::span<const char> seed_cells) {
+  if (!seed_cells.empty() && seed_cells.size() != mesh.num_cells())
+    throw UsageError("optimize: " + std::to_string(seed_cells.size()) + " seed flags for " +
+                     std::to_string(mesh.num_cells()) + " cells");
   OptimReport rep;
   optim_detail::Context ctx(mesh, primal, params);
   ctx.report = &rep;
   ctx.progress = &progress;
+  ctx.seed_cells = seed_cells;
   // Every run ends with a record() of the final state, so its statistics are
   // the report's "after" (no extra pass over the cells).
   ctx.record(0);

@@ -5,6 +5,7 @@
 #pragma once
 #include <cstdint>
 #include <string_view>
+#include <span>
 #include <vector>
 
 #include "core/json.h"
@@ -114,8 +115,11 @@ struct OptimReport {
 // Optimises `mesh` in place. With primal == nullptr boundary points (dim 0..2) are
 // fixed; otherwise dim-1/2 points slide on the primal's model edges/faces.
 // `progress` (may be empty) is called after every iteration with its record.
+// seed_cells (Local and Untangle; empty: every point, the default): the
+// smoothing starts from the points of these cells only and spreads by the
+// settling rule (a re-optimisation after a local change, e.g. the split).
 OptimReport optimize(PolyMesh& mesh, const ClassifiedTetMesh* primal, const OptimParams& params,
-                     const ProgressFn& progress = {});
+                     const ProgressFn& progress = {}, std::span<const char> seed_cells = {});
 
 // CLI parsers; throw UsageError on an unknown value.
 OptimParams::Method parse_method(std::string_view s);             // none|untangle|local|global

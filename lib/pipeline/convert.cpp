@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "core/stopwatch.h"
+#include "dual/cut_topology.h"
 #include "io/output_guard.h"
 #include "io/read_tet_mesh.h"
 #include "split/cuts.h"
@@ -139,6 +140,21 @@ Json split_causes(const ConvertResult& r, const SplitState& st) {
   return j;
 }
 
+// The cells holding a point pinned by a whole-cut vertex (dual/cut_topology.h):
+// where the split changed the optimised mesh, the seed of its re-optimisation.
+std::vector<char> split_region(const ClassifiedTetMesh& m, const VertexCuts& cuts, const PolyMesh& mesh) {
+  std::vector<char> pin(mesh.num_points(), 0), seed(mesh.num_cells(), 0);
+  if (mesh.point_origin.size() != mesh.num_points()) return std::vector<char>(mesh.num_cells(), 1);
+  for (std::size_t p = 0; p < pin.size(); ++p) pin[p] = char(pinned(m, &cuts, mesh.point_origin[p]));
+  for (std::size_t c = 0; c < seed.size(); ++c)
+    for (PointId p : mesh.cell_points(CellId(c)))
+      if (pin[p.idx]) {
+        seed[c] = 1;
+        break;
+      }
+  return seed;
+}
+
 // The rounds of the split loop after the first optimised dual (split/split.h):
 // the vertices of the cells still invalid are cut whole, the dual rebuilt and
 // checked, until no cell is invalid or every invalid cell is already a
@@ -170,7 +186,11 @@ void run_split(ConvertResult& r, SplitState& st, const PipelineParams& params, c
     st.cuts = std::move(best_cuts);
     stats = Json::object();
     if (best_round > 0 && params.optim.method != OptimParams::Method::None) {
-      stats.set("optimize", optimize(r.mesh, &r.primal, params.optim, hooks.progress).to_json());
+      const std::vector<char> seed = split_region(r.primal, st.cuts, r.mesh);
+      const bool local = params.optim.method != OptimParams::Method::Global;
+      stats.set("optimize", optimize(r.mesh, &r.primal, params.optim, hooks.progress,
+                                     local ? std::span<const char>(seed) : std::span<const char>())
+                                .to_json());
       r.check = check_mesh(r.mesh, &r.primal, false);
     }
     if (!st.cuts.empty()) r.mesh.cell_origin = cut_cell_origins(r.primal, st.cuts, r.mesh);
