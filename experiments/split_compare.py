@@ -24,7 +24,7 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
-from tetopt_compare import fmt, md, run_step, write_json  # noqa: E402  (one copy of the record helpers)
+import tetopt_compare as tc  # noqa: E402  (one copy of the record, table and option helpers)
 
 DOMAINS = ["cube", "twomat", "fichera", "fracture", "network", "fins"]
 VARIANTS = {
@@ -34,39 +34,6 @@ VARIANTS = {
     "split_none": ["--optimize", "none"],
 }
 FIGURE_DOMAINS = ["fichera", "fracture", "network", "fins"]
-
-
-def measure(args):
-    rec_dir = os.path.join(args.out, "records")
-    mesh_dir = os.path.join(args.out, "meshes")
-    os.makedirs(rec_dir, exist_ok=True)
-    os.makedirs(mesh_dir, exist_ok=True)
-    for size in args.sizes:
-        for d in args.domains:
-            msh = os.path.join(mesh_dir, f"{d}_{size}.msh")
-            gen = [args.polydual, "generate", d, "--tets", str(size), "-o", msh]
-            r = run_step(os.path.join(rec_dir, f"generate_{d}_{size}.json"), gen, args.force or not os.path.exists(msh), False)
-            print(f"generate {d} {size}: rc {r['returncode']}", flush=True)
-            for v in args.variants:
-                vtu = os.path.join(mesh_dir, f"{d}_{size}_{v}.vtu")
-                cmd = [args.polydual, "convert", msh, "-o", vtu, "--force", "--json", "--quiet"] + VARIANTS[v]
-                rec = os.path.join(rec_dir, f"{d}_{size}_{v}.json")
-                r = run_step(rec, cmd, args.force or not os.path.exists(vtu), True)
-                r.update({"domain": d, "size": size, "variant": v, "vtu": vtu})
-                write_json(rec, r)
-                print(f"  {v}: rc {r['returncode']} {r['wall_seconds']:.1f}s", flush=True)
-
-
-def load(out):
-    import json
-    recs = []
-    rec_dir = os.path.join(out, "records")
-    for name in sorted(os.listdir(rec_dir)):
-        with open(os.path.join(rec_dir, name)) as f:
-            r = json.load(f)
-        if "variant" in r and "summary" in r:
-            recs.append(r)
-    return recs
 
 
 def final_quality(s):
@@ -95,7 +62,7 @@ def table(recs):
     order = {v: i for i, v in enumerate(VARIANTS)}
     recs = sorted(recs, key=lambda r: (r["size"], DOMAINS.index(r["domain"]) if r["domain"] in DOMAINS else 99,
                                        order.get(r["variant"], 99)))
-    return md(["domain", "tets", "variant", "cells", "invalid before", "invalid after", "mean κ/3", "max κ/3",
+    return tc.md(["domain", "tets", "variant", "cells", "invalid before", "invalid after", "mean κ/3", "max κ/3",
                "wall s", "rounds", "vertices cut whole", "split: free edge", "sheet crossing", "concave edge/vertex",
                "invalid after optimisation"], [row(r) for r in recs])
 
@@ -143,7 +110,7 @@ def figures(args, recs, fig_dir):
 
 
 def render_all(args):
-    recs = load(args.out)
+    recs = tc.load(args.out)
     body = table(recs)
     tdir = os.path.join(args.out, "tables")
     os.makedirs(tdir, exist_ok=True)
@@ -167,24 +134,12 @@ def render_all(args):
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--polydual", default=os.path.join(REPO, "build", "polydual"))
-    ap.add_argument("--out", default="results_split")
-    ap.add_argument("--sizes", default="20000")
-    ap.add_argument("--domains", default=",".join(DOMAINS))
-    ap.add_argument("--variants", default=",".join(VARIANTS))
-    ap.add_argument("--render-only", action="store_true")
+    tc.add_common_args(ap, "results_split", "20000", DOMAINS, VARIANTS)
     ap.add_argument("--no-figures", action="store_true")
     ap.add_argument("--paper", action="store_true", help="write paper/split_tables.md and its figures")
-    ap.add_argument("--force", action="store_true")
-    args = ap.parse_args(argv)
-    args.sizes = [int(s) for s in args.sizes.split(",")]
-    args.domains = args.domains.split(",")
-    args.variants = args.variants.split(",")
-    for v in args.variants:
-        if v not in VARIANTS:
-            sys.exit(f"unknown variant {v} (one of {','.join(VARIANTS)})")
+    args = tc.parse_common_args(ap, argv, VARIANTS)
     if not args.render_only:
-        measure(args)
+        tc.measure(args, VARIANTS)
     render_all(args)
 
 

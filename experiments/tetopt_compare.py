@@ -67,7 +67,11 @@ def run_step(record, cmd, force, parse_json):
     return rec
 
 
-def measure(args):
+def measure(args, variants=None):
+    """Generates every domain and size, then converts each variant of
+    `variants` (name -> extra convert options; default VARIANTS), recording
+    each step in OUT/records/ (the VTU's path with it)."""
+    variants = VARIANTS if variants is None else variants
     rec_dir = os.path.join(args.out, "records")
     mesh_dir = os.path.join(args.out, "meshes")
     os.makedirs(rec_dir, exist_ok=True)
@@ -80,10 +84,11 @@ def measure(args):
             print(f"generate {d} {size}: rc {r['returncode']}", flush=True)
             for v in args.variants:
                 vtu = os.path.join(mesh_dir, f"{d}_{size}_{v}.vtu")
-                cmd = [args.polydual, "convert", msh, "-o", vtu, "--json", "--quiet"] + VARIANTS[v]
-                r = run_step(os.path.join(rec_dir, f"{d}_{size}_{v}.json"), cmd, args.force, True)
-                r.update({"domain": d, "size": size, "variant": v})
-                write_json(os.path.join(rec_dir, f"{d}_{size}_{v}.json"), r)
+                cmd = [args.polydual, "convert", msh, "-o", vtu, "--force", "--json", "--quiet"] + variants[v]
+                rec = os.path.join(rec_dir, f"{d}_{size}_{v}.json")
+                r = run_step(rec, cmd, args.force or not os.path.exists(vtu), True)
+                r.update({"domain": d, "size": size, "variant": v, "vtu": vtu})
+                write_json(rec, r)
                 print(f"  {v}: rc {r['returncode']} {r['wall_seconds']:.1f}s", flush=True)
 
 
@@ -295,24 +300,35 @@ def render(args):
         print(f"## {name}\n{body}")
 
 
-def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+def add_common_args(ap, out, sizes, domains, variants, variants_help=None):
+    """The options every compare script shares (variants: the default list)."""
     ap.add_argument("--polydual", default=os.path.join(REPO, "build", "polydual"))
-    ap.add_argument("--out", default="results_tetopt")
-    ap.add_argument("--sizes", default="20000,100000")
-    ap.add_argument("--domains", default=",".join(DOMAINS))
-    ap.add_argument("--variants", default=",".join(DEFAULT_VARIANTS),
-                    help="default: all but the planarity_* variants (add them by name)")
+    ap.add_argument("--out", default=out)
+    ap.add_argument("--sizes", default=sizes)
+    ap.add_argument("--domains", default=",".join(domains))
+    ap.add_argument("--variants", default=",".join(variants), help=variants_help)
     ap.add_argument("--render-only", action="store_true")
-    ap.add_argument("--paper", action="store_true", help="write paper/tetopt_tables.md")
     ap.add_argument("--force", action="store_true")
+
+
+def parse_common_args(ap, argv, variants):
+    """Parses argv; sizes, domains and variants become lists, unknown variants an error."""
     args = ap.parse_args(argv)
     args.sizes = [int(s) for s in args.sizes.split(",")]
     args.domains = args.domains.split(",")
     args.variants = args.variants.split(",")
     for v in args.variants:
-        if v not in VARIANTS:
-            sys.exit(f"unknown variant {v} (one of {','.join(VARIANTS)})")
+        if v not in variants:
+            sys.exit(f"unknown variant {v} (one of {','.join(variants)})")
+    return args
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    add_common_args(ap, "results_tetopt", "20000,100000", DOMAINS, DEFAULT_VARIANTS,
+                    "default: all but the planarity_* variants (add them by name)")
+    ap.add_argument("--paper", action="store_true", help="write paper/tetopt_tables.md")
+    args = parse_common_args(ap, argv, VARIANTS)
     if not args.render_only:
         measure(args)
     render(args)

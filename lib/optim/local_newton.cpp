@@ -82,7 +82,8 @@ class VertexNewton {
         f0 = f(zero);  // the planarity term is in f already
         fd_derivatives(f, k, h, f0, g, H);
       } else {
-        f0 = f(zero) - (flat ? prm.planarity * planarity_.value(ctx_.stencil, pts, o) : 0.0);
+        const double xo[3] = {o.x, o.y, o.z};
+        f0 = obj(xo);  // kappa alone: add_planarity adds the term and its derivatives
         exact_derivatives(obj, o, B, k, h, g, H);
         if (flat) add_planarity(x_of, k, h, prm.planarity, f0, g, H);
       }
