@@ -22,9 +22,15 @@ struct Context {
   std::vector<std::uint8_t> cell_valid;      // exact star test, kept current
   std::chrono::steady_clock::time_point start;
   QualityStats last_stats;                   // of the last record()
+  std::vector<double> cell_quality;          // per cell, of the last record()
   OptimReport* report = nullptr;
   const ProgressFn* progress = nullptr;      // called after each record(); may be null
   std::span<const char> seed_cells;          // optimize()'s; empty: every point starts active
+  // Derivatives::Corrected: per cell the sum of d kappa_mod / d R over its
+  // corners, per stencil loop the sum of d kappa_mod / d F over the loop's
+  // corners (cell_energy_gradient), at the positions of the last refresh.
+  std::vector<Vec3> grad_R, grad_F;
+  double omega = 1.0;                        // the local scheme's relaxation in the current sweep
 
   Context(PolyMesh& m, const ClassifiedTetMesh* primal, const OptimParams& p);
   double seconds() const;
@@ -32,6 +38,12 @@ struct Context {
   double objective(std::span<const Point3> pts) const;
   // Appends an IterationRecord for the mesh's current state.
   void record(int iteration);
+  // Recomputes grad_R and grad_F at the current positions (parallel per cell);
+  // returns the total objective.
+  double refresh_centre_gradients();
+  // cell_quality and (Corrected) the centre gradients of the given cells at the
+  // current positions: the cells whose points a partial sweep moved.
+  void refresh_cells(std::span<const std::uint32_t> cells);
   // Tangent basis of p (dof(p) orthonormal vectors).
   void basis(PointId p, Vec3 B[3]) const;
 };

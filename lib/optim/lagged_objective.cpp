@@ -16,14 +16,18 @@ void LaggedObjective::add(const Point3* P, const bool* is_p, const Point3& verte
   corners_.push_back(c);
 }
 
-void LaggedObjective::build(const MeshStencil& s, const Point3* pts, const double* V0, Metric m, PointId p) {
+void LaggedObjective::build(const MeshStencil& s, const Point3* pts, const double* V0, Metric m, PointId p,
+                            const Vec3* grad_R, const Vec3* grad_F) {
   corners_.clear();
+  G_ = Vec3{};
+  x0_ = pts[p.idx];
   for (std::uint32_t cell : s.cells_of(p)) {
     const auto cp = s.points_of(cell);
     Point3 R{0, 0, 0};
     for (PointId q : cp) R += pts[q.idx];
     const double inv_m = 1.0 / static_cast<double>(cp.size());  // as for_each_corner
     R = Point3{R.x * inv_m, R.y * inv_m, R.z * inv_m};
+    if (grad_R) G_ += inv_m * grad_R[cell];
     for (std::uint32_t j = s.cell_loop_off[cell]; j < s.cell_loop_off[cell + 1]; ++j) {
       const auto loop = s.loop(j);
       const std::size_t k = loop.size();
@@ -31,6 +35,7 @@ void LaggedObjective::build(const MeshStencil& s, const Point3* pts, const doubl
       for (std::size_t i = 0; i < k; ++i)
         if (loop[i] == p) at = i;
       if (at == k) continue;
+      if (grad_F && m == Metric::Q1) G_ += grad_F[j] / static_cast<double>(k);
       const PointId prev = loop[(at + k - 1) % k], next = loop[(at + 1) % k];
       if (m == Metric::Q1) {
         Point3 F{0, 0, 0};
@@ -83,7 +88,7 @@ double LaggedObjective::value(const Point3& x, double c) const {
     corner_edges(k, x, e);
     sum += corner_kappa_mod<double>(e[0], e[1], e[2], k.v0, c);
   }
-  return sum;
+  return sum + correction(x);
 }
 
 double LaggedObjective::derivatives(const Point3& x, double c, double g[3], double H[9]) const {
@@ -95,7 +100,8 @@ double LaggedObjective::derivatives(const Point3& x, double c, double g[3], doub
     corner_edges(k, x, e);
     sum += corner_kappa_mod_add_point_derivatives(e[0], e[1], e[2], k.a[0], k.a[1], k.a[2], k.v0, c, g, H);
   }
-  return sum;
+  g[0] += G_.x; g[1] += G_.y; g[2] += G_.z;
+  return sum + correction(x);
 }
 
 }  // namespace polydual

@@ -6,6 +6,15 @@
 // dozen corner evaluations. The exact star test of the optimiser still uses the
 // true centres, so the validity guarantee is unchanged; only the Newton model
 // and the line search's decrease test see lagged centres.
+//
+// Corrected (the default scheme): the lagged model plus the linear term
+// G . (x - x0), where G is what the held centres leave out of the gradient at
+// the build position x0: sum over p's cells of (1/m) dE/dR and over p's faces of
+// (1/k) dE/dF, from the centre gradients of every corner of those cells
+// (cell_energy_gradient's grad_R, grad_F), taken at the start of the sweep. With
+// current centre gradients the model's gradient at x0 is the true local
+// objective's, so the scheme's fixed points are those of the full objective
+// (proofs/quality.md §6b); only the model's curvature stays lagged.
 #pragma once
 #include <vector>
 
@@ -16,9 +25,13 @@ namespace polydual {
 
 class LaggedObjective {
  public:
-  // Collects p's direct corners at the current positions pts.
-  void build(const MeshStencil& s, const Point3* pts, const double* V0, Metric m, PointId p);
-  // Sum of kappa_mod over the direct corners with p at x (centres lagged).
+  // Collects p's direct corners at the current positions pts. grad_R (per
+  // cell) and grad_F (per loop of the stencil, Q1), both or neither: the centre
+  // gradients of the correction term; null: the plain lagged model.
+  void build(const MeshStencil& s, const Point3* pts, const double* V0, Metric m, PointId p,
+             const Vec3* grad_R = nullptr, const Vec3* grad_F = nullptr);
+  // Sum of kappa_mod over the direct corners with p at x (centres lagged), plus
+  // the correction G . (x - x0).
   double value(const Point3& x, double c) const;
   // The same at p's build position, with gradient g (3) and Hessian H (3x3
   // row-major) with respect to p. At the build position the value equals the
@@ -35,7 +48,12 @@ class LaggedObjective {
   };
   static void corner_edges(const Corner& k, const Point3& x, double e[3][3]);
   void add(const Point3* P, const bool* is_p, const Point3& vertex, bool vertex_is_p, double v0);
+  double correction(const Point3& x) const {
+    return G_.x * (x.x - x0_.x) + G_.y * (x.y - x0_.y) + G_.z * (x.z - x0_.z);
+  }
   std::vector<Corner> corners_;
+  Vec3 G_{};     // the correction's gradient (zero for the plain lagged model)
+  Point3 x0_{};  // p's build position
 };
 
 }  // namespace polydual

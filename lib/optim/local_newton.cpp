@@ -58,8 +58,11 @@ class VertexNewton {
         for (int i = 0; i < k; ++i) x += t[i] * B[i];
         return x;
       };
-      const bool lagged = prm.derivatives == OptimParams::Derivatives::Lagged;
-      if (lagged) lagged_.build(ctx_.stencil, pts, ctx_.V0.data(), prm.metric, p);
+      const bool corrected = prm.derivatives == OptimParams::Derivatives::Corrected;
+      const bool lagged = prm.derivatives == OptimParams::Derivatives::Lagged || corrected;
+      if (lagged)
+        lagged_.build(ctx_.stencil, pts, ctx_.V0.data(), prm.metric, p, corrected ? ctx_.grad_R.data() : nullptr,
+                      corrected ? ctx_.grad_F.data() : nullptr);
       // Face flatness (optim/planarity.h), weighted by prm.planarity: added to
       // the value, and its derivatives by central differences to g and H.
       const bool flat = prm.planarity > 0;
@@ -99,11 +102,14 @@ class VertexNewton {
       if (-slope <= 1e-14 * std::fabs(f0)) break;  // Newton decrement ~ 0: converged
       // Damping (paper 3.3 / [9]): halve until Armijo holds AND every incident
       // cell that was valid is still valid (exact star test).
-      double alpha = 1.0;
+      // Over-relaxation (ctx_.omega > 1 in smoothing sweeps): omega x the Newton
+      // step is tried first, then the undamped step and its halvings.
+      const bool over = ctx_.omega > 1.0;
+      double alpha = over ? ctx_.omega : 1.0;
       bool ok = false;
       std::uint32_t prim = BoundaryConstraints::kNone;
       Point3 xt = o;
-      for (int hv = 0; hv <= prm.max_halvings && !ok; ++hv, alpha *= 0.5) {
+      for (int hv = over ? -1 : 0; hv <= prm.max_halvings && !ok; ++hv, alpha = hv <= 0 ? 1.0 : alpha * 0.5) {
         double t[3] = {0, 0, 0};
         for (int i = 0; i < k; ++i) t[i] = alpha * d[i];
         xt = x_of(t);
@@ -141,7 +147,9 @@ class VertexNewton {
   double analytic_derivatives(PointId p, const Vec3* B, int k, Vec& g, Mat& H) const {
     const auto& prm = ctx_.params;
     double gx[3], Hx[9];
-    const double f0 = prm.derivatives == OptimParams::Derivatives::Lagged
+    const bool lagged = prm.derivatives == OptimParams::Derivatives::Lagged ||
+                        prm.derivatives == OptimParams::Derivatives::Corrected;
+    const double f0 = lagged
                           ? lagged_.derivatives(ctx_.mesh.points[p.idx], prm.c, gx, Hx)
                           : local_objective_derivatives(ctx_.stencil, ctx_.mesh.points.data(), ctx_.V0.data(),
                                                         prm.metric, prm.c, p, gx, Hx);
@@ -297,6 +305,99 @@ ColourClasses colour_points(const Context& ctx, bool surface) {
   return cc;
 }
 
+// One sweep: the surface pass then the volume pass, each colour in parallel,
+// visiting the points for which active(p) holds. A point whose accepted moves
+// add up to more than settle_move x its local length stamps its cells with
+// `sweep` in last_change. Visits and accepted moves go to counts.
+template <class Active>
+void sweep_points(Context& ctx, const ColourClasses (&passes)[2], tbb::enumerable_thread_specific<VertexNewton>& solvers,
+                  int sweep, std::vector<int>& last_change, const Active& active, IterationRecord& counts) {
+  std::atomic<std::uint64_t> updates{0}, visited{0};
+  for (const ColourClasses& cc : passes) {
+    for (std::size_t col = 0; col + 1 < cc.colour_off.size(); ++col) {
+      const std::uint32_t b = cc.colour_off[col], e = cc.colour_off[col + 1];
+      tbb::parallel_for(tbb::blocked_range<std::uint32_t>(b, e, 4), [&](const auto& r) {
+        VertexNewton& solver = solvers.local();
+        std::uint64_t n_upd = 0, n_vis = 0;
+        for (std::uint32_t a = r.begin(); a != r.end(); ++a) {
+          const PointId p(cc.points[a]);
+          if (!active(p)) continue;
+          ++n_vis;
+          double moved = 0;
+          const int n = solver.optimise(p, &moved);
+          n_upd += static_cast<std::uint64_t>(n);
+          if (n == 0) continue;
+          const auto cells = ctx.stencil.cells_of(p);
+          double v0 = 0;
+          for (std::uint32_t c : cells) v0 += ctx.V0[c];
+          const double ell = std::cbrt(v0 / static_cast<double>(cells.size()));
+          if (moved > ctx.params.settle_move * ell)
+            for (std::uint32_t c : cells) last_change[c] = sweep;
+        }
+        updates += n_upd;
+        visited += n_vis;
+      });
+    }
+  }
+  counts.updates = updates;
+  counts.visited = visited;
+}
+
+// Records iteration `sweep` with the visit counts; returns the record.
+IterationRecord& record_sweep(Context& ctx, int sweep, const IterationRecord& counts) {
+  ctx.report->vertex_updates += counts.updates;
+  ctx.record(sweep);
+  IterationRecord& rec = ctx.report->iterations.back();
+  rec.visited = counts.visited;
+  rec.updates = counts.updates;
+  return rec;
+}
+
+// The polish phase (prm.polish_sweeps): sweeps that visit only the points of
+// the cells whose quality is above polish_ratio x the mean, while the worst
+// quality still drops by more than kPolishTol (relative). The slowest cells of
+// the Gauss-Seidel are few, so a polish sweep refreshes the qualities (and
+// centre gradients) of the cells around the polished points only, and the
+// phase ends with one record.
+constexpr double kPolishTol = 1e-4;
+
+void polish_worst(Context& ctx, const ColourClasses (&passes)[2], tbb::enumerable_thread_specific<VertexNewton>& solvers,
+                  int sweep, std::vector<int>& last_change) {
+  const auto& prm = ctx.params;
+  const double threshold = prm.polish_ratio * ctx.last_stats.mean;
+  std::vector<char> bad(ctx.mesh.num_cells(), 0);
+  std::vector<std::uint32_t> region;  // the cells of the points of bad cells
+  IterationRecord counts;
+  double worst = ctx.last_stats.max;
+  int k = 0;
+  while (k < prm.polish_sweeps && sweep + k < prm.max_iter) {
+    for (std::size_t c = 0; c < bad.size(); ++c) bad[c] = char(ctx.cell_quality[c] > threshold);
+    auto active = [&](PointId p) {
+      for (std::uint32_t c : ctx.stencil.cells_of(p))
+        if (bad[c]) return true;
+      return false;
+    };
+    IterationRecord one;
+    sweep_points(ctx, passes, solvers, sweep + ++k, last_change, active, one);
+    counts.visited += one.visited;
+    counts.updates += one.updates;
+    if (one.updates == 0) break;
+    region.clear();
+    for (std::size_t c = 0; c < bad.size(); ++c)
+      if (bad[c])
+        for (PointId q : ctx.stencil.points_of(static_cast<std::uint32_t>(c)))
+          for (std::uint32_t d : ctx.stencil.cells_of(q)) region.push_back(d);
+    std::sort(region.begin(), region.end());
+    region.erase(std::unique(region.begin(), region.end()), region.end());
+    ctx.refresh_cells(region);
+    const double w = *std::max_element(ctx.cell_quality.begin(), ctx.cell_quality.end());
+    const bool stalled = !(w < worst * (1 - kPolishTol));
+    worst = std::min(worst, w);
+    if (stalled) break;
+  }
+  if (k > 0) record_sweep(ctx, sweep + k, counts);
+}
+
 }  // namespace
 
 void run_local(Context& ctx) {
@@ -328,51 +429,27 @@ void run_local(Context& ctx) {
       if (ctx.seed_cells[c]) last_change[c] = 0;
   bool full_sweep = untangle_left == 0 && !seeded;
   double f_prev = ctx.report->iterations.back().objective;
-  for (int sweep = 1; sweep <= prm.max_iter; ++sweep) {
+  int sweep = 1;
+  for (; sweep <= prm.max_iter; ++sweep) {
     const bool untangling = untangle_left > 0;
-    std::atomic<std::uint64_t> updates{0}, visited{0};
-    for (const ColourClasses& cc : passes) {
-      for (std::size_t col = 0; col + 1 < cc.colour_off.size(); ++col) {
-        const std::uint32_t b = cc.colour_off[col], e = cc.colour_off[col + 1];
-        tbb::parallel_for(tbb::blocked_range<std::uint32_t>(b, e, 4), [&](const auto& r) {
-          VertexNewton& solver = solvers.local();
-          std::uint64_t n_upd = 0, n_vis = 0;
-          for (std::uint32_t a = r.begin(); a != r.end(); ++a) {
-            const PointId p(cc.points[a]);
-            const auto cells = ctx.stencil.cells_of(p);
-            // Untangling: rings grow by one cell layer per sweep (changes of the
-            // previous sweep only); smoothing: changes of this or the previous sweep.
-            const int since = sweep - 1;
-            bool active = full_sweep;
-            for (std::uint32_t c : cells)
-              active = active || !ctx.cell_valid[c] || (last_change[c] >= since && (!untangling || last_change[c] < sweep));
-            if (!active) continue;
-            ++n_vis;
-            double moved = 0;
-            const int n = solver.optimise(p, &moved);
-            n_upd += static_cast<std::uint64_t>(n);
-            if (n == 0) continue;
-            double v0 = 0;
-            for (std::uint32_t c : cells) v0 += ctx.V0[c];
-            const double ell = std::cbrt(v0 / static_cast<double>(cells.size()));
-            if (moved > prm.settle_move * ell)
-              for (std::uint32_t c : cells) last_change[c] = sweep;
-          }
-          updates += n_upd;
-          visited += n_vis;
-        });
-      }
-    }
-    ctx.report->vertex_updates += updates;
-    ctx.record(sweep);
-    IterationRecord& rec = ctx.report->iterations.back();
-    rec.visited = visited;
-    rec.updates = updates;
+    ctx.omega = untangling ? 1.0 : prm.relaxation;  // no over-relaxation while untangling
+    // Untangling: rings grow by one cell layer per sweep (changes of the
+    // previous sweep only); smoothing: changes of this or the previous sweep.
+    const int since = sweep - 1;
+    auto active = [&](PointId p) {
+      bool a = full_sweep;
+      for (std::uint32_t c : ctx.stencil.cells_of(p))
+        a = a || !ctx.cell_valid[c] || (last_change[c] >= since && (!untangling || last_change[c] < sweep));
+      return a;
+    };
+    IterationRecord counts;
+    sweep_points(ctx, passes, solvers, sweep, last_change, active, counts);
+    const IterationRecord& rec = record_sweep(ctx, sweep, counts);
     if (untangling) {
       // The objective test is meaningless while only a few points move.
       --untangle_left;
-      if (rec.invalid == 0 || updates == 0) untangle_left = 0;
-      if (untangle_only && untangle_left == 0) break;
+      if (rec.invalid == 0 || rec.updates == 0) untangle_left = 0;
+      if (untangle_only && untangle_left == 0) return;
       full_sweep = untangle_left == 0 && !seeded;
       f_prev = rec.objective;
       continue;
@@ -382,6 +459,8 @@ void run_local(Context& ctx) {
     if (std::fabs(f_prev - f) < prm.tol * std::fabs(f_prev)) break;
     f_prev = f;
   }
+  if (!untangle_only && prm.polish_sweeps > 0 && ctx.report->iterations.back().invalid == 0)
+    polish_worst(ctx, passes, solvers, std::min(sweep, prm.max_iter), last_change);
 }
 
 }  // namespace polydual::optim_detail

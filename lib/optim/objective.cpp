@@ -3,7 +3,8 @@
 namespace polydual {
 
 double cell_energy_gradient(const MeshStencil& s, std::uint32_t c, Metric m,
-                            std::span<const Point3> pts, double V0, double c_delta, Vec3* grad) {
+                            std::span<const Point3> pts, double V0, double c_delta, Vec3* grad,
+                            Vec3* grad_R, Vec3* grad_F) {
   const auto cp = s.points_of(c);
   const std::size_t np = cp.size();
   Vec3 R{};
@@ -26,30 +27,35 @@ double cell_energy_gradient(const MeshStencil& s, std::uint32_t c, Metric m,
         const std::uint32_t ia = (i + k - 1) % k, ib = i;
         const Point3 &a = pts[lp[ia].idx], &b = pts[lp[ib].idx];
         energy += corner_kappa_mod_gradient(F - a, b - a, R - a, V0, c_delta, g1, g2, g3);
+        gF += g1; gR += g3;
         if (grad) {
-          gF += g1; grad[ll[ib]] += g2; gR += g3;
+          grad[ll[ib]] += g2;
           grad[ll[ia]] -= g1 + g2 + g3;
         }
         energy += corner_kappa_mod_gradient(a - b, F - b, R - b, V0, c_delta, g1, g2, g3);
+        gF += g2; gR += g3;
         if (grad) {
-          grad[ll[ia]] += g1; gF += g2; gR += g3;
+          grad[ll[ia]] += g1;
           grad[ll[ib]] -= g1 + g2 + g3;
         }
       } else {
         const std::uint32_t ip = (i + k - 1) % k, in = (i + 1) % k;
         const Point3 &p = pts[lp[ip].idx], &v = pts[lp[i].idx], &n = pts[lp[in].idx];
         energy += corner_kappa_mod_gradient(p - v, n - v, R - v, V0, c_delta, g1, g2, g3);
+        gR += g3;
         if (grad) {
-          grad[ll[ip]] += g1; grad[ll[in]] += g2; gR += g3;
+          grad[ll[ip]] += g1; grad[ll[in]] += g2;
           grad[ll[i]] -= g1 + g2 + g3;
         }
       }
     }
+    if (grad_F) grad_F[j - s.cell_loop_off[c]] = gF;
     if (grad) {
       const Vec3 share = gF / static_cast<double>(k);
       for (std::uint32_t i = 0; i < k; ++i) grad[ll[i]] += share;
     }
   }
+  if (grad_R) *grad_R = gR;
   if (grad) {
     const Vec3 share = gR / static_cast<double>(np);
     for (std::size_t i = 0; i < np; ++i) grad[i] += share;

@@ -55,8 +55,13 @@ double local_objective_derivatives(const MeshStencil& s, const Point3* pts, cons
 // Energy of cell c (sum of kappa_mod over its corners) and, if grad != nullptr,
 // its gradient with respect to the cell's points, written to grad[i] for the
 // i-th point of s.points_of(c) (reverse-mode chain rule through F and R, from
-// corner_kappa_mod_gradient). Used by the global scheme.
+// corner_kappa_mod_gradient). Used by the global scheme. If grad_R != nullptr,
+// *grad_R = the sum over the cell's corners of d kappa_mod / d R; if grad_F !=
+// nullptr (Q1), grad_F[i] = the sum over the corners of the cell's i-th loop
+// of d kappa_mod / d F (the centre gradients of the corrected lagged scheme,
+// optim/lagged_objective.h).
 double cell_energy_gradient(const MeshStencil& s, std::uint32_t c, Metric m,
-                            std::span<const Point3> pts, double V0, double c_delta, Vec3* grad);
+                            std::span<const Point3> pts, double V0, double c_delta, Vec3* grad,
+                            Vec3* grad_R = nullptr, Vec3* grad_F = nullptr);
 
 }  // namespace polydual

@@ -10,6 +10,7 @@
 #include "core/interrupt.h"
 #include "core/param_range.h"
 #include "optim/context.h"
+#include "optim/objective.h"
 #include "quality/star_verdict.h"
 
 namespace polydual {
@@ -51,19 +52,54 @@ double Context::objective(std::span<const Point3> pts) const {
   return sum;
 }
 
+double Context::refresh_centre_gradients() {
+  const std::size_t nc = stencil.num_cells();
+  grad_R.resize(nc);
+  grad_F.resize(stencil.cell_loop_off.back());
+  std::vector<double> e(nc);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nc, 64), [&](const auto& r) {
+    for (std::size_t c = r.begin(); c != r.end(); ++c) {
+      const auto cell = static_cast<std::uint32_t>(c);
+      e[c] = cell_energy_gradient(stencil, cell, params.metric, mesh.points, V0[c], params.c, nullptr, &grad_R[c],
+                                  grad_F.data() + stencil.cell_loop_off[c]);
+    }
+  });
+  double sum = 0;
+  for (double x : e) sum += x;  // serial, in cell order: deterministic
+  return sum;
+}
+
+void Context::refresh_cells(std::span<const std::uint32_t> cells) {
+  const bool corrected = params.derivatives == OptimParams::Derivatives::Corrected;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells.size(), 64), [&](const auto& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const std::uint32_t c = cells[i];
+      cell_quality[c] = polydual::cell_quality(stencil, c, params.metric, mesh.points);
+      if (corrected)
+        cell_energy_gradient(stencil, c, params.metric, mesh.points, V0[c], params.c, nullptr, &grad_R[c],
+                             grad_F.data() + stencil.cell_loop_off[c]);
+    }
+  });
+}
+
 void Context::record(int iteration) {
   throw_if_interrupted();  // between iterations: Ctrl-C stops a long run promptly
   IterationRecord r;
   r.iteration = iteration;
-  r.objective = objective(mesh.points);
+  // Corrected derivatives: the centre gradients come from the same pass over
+  // the corners as the objective, so the next sweep starts with them current.
+  r.objective = params.derivatives == OptimParams::Derivatives::Corrected ? refresh_centre_gradients()
+                                                                           : objective(mesh.points);
   // cell_valid holds the exact star verdict of every cell at all times (both
   // schemes re-test every cell whose points they move), so counting it is the
   // exact count without a second pass of the star test.
   r.invalid = 0;
   for (std::uint8_t v : cell_valid) r.invalid += v == 0;
-  last_stats = quality_stats(cell_qualities(stencil, params.metric, mesh.points), params.metric);
+  cell_quality = cell_qualities(stencil, params.metric, mesh.points);
+  last_stats = quality_stats(cell_quality, params.metric);
   r.min_quality = last_stats.min;
   r.mean_quality = last_stats.mean;
+  r.max_quality = last_stats.max;
   r.seconds = seconds();
   report->iterations.push_back(r);
   if (progress && *progress) {
@@ -115,6 +151,7 @@ Json IterationRecord::to_json() const {
   j.set("invalid", invalid);
   j.set("min_quality", min_quality);
   j.set("mean_quality", mean_quality);
+  j.set("max_quality", max_quality);
   j.set("seconds", seconds);
   j.set("visited", static_cast<unsigned long long>(visited));
   j.set("updates", static_cast<unsigned long long>(updates));
@@ -146,6 +183,9 @@ void OptimParams::validate() const {
   check_param("OptimParams::settle_move", "relative to cbrt(V0)", {0, 1}, settle_move);
   check_param("OptimParams::untangle_sweeps", "sweeps", {0, double(kMaxUntangleSweeps)}, untangle_sweeps);
   check_param("OptimParams::max_halvings", "halvings", {0, double(kMaxHalvings)}, max_halvings);
+  check_param("OptimParams::polish_sweeps", "sweeps", {0, double(kMaxIterLimit)}, polish_sweeps);
+  check_param("OptimParams::polish_ratio", "relative to the mean quality", {1.0, 100.0}, polish_ratio);
+  check_param("OptimParams::relaxation", "over-relaxation factor", {1.0, kMaxRelaxation}, relaxation);
   check_param("OptimParams::fd_step", "relative to cbrt(V0)", {0, kMaxFdStep, true}, fd_step);
   check_param("OptimParams::global_iterations_per_round", "iterations", {1, double(kMaxIterLimit)},
               global_iterations_per_round);
@@ -167,6 +207,9 @@ Json OptimParams::to_json() const {
   j.set("settle_move", settle_move);
   j.set("untangle_sweeps", untangle_sweeps);
   j.set("max_halvings", max_halvings);
+  j.set("relaxation", relaxation);
+  j.set("polish_sweeps", polish_sweeps);
+  j.set("polish_ratio", polish_ratio);
   j.set("fd_step", fd_step);
   j.set("planarity", planarity);
   j.set("global_iterations_per_round", global_iterations_per_round);
@@ -192,7 +235,8 @@ OptimParams::Derivatives parse_derivatives(std::string_view s) {
   if (s == "exact") return OptimParams::Derivatives::Exact;
   if (s == "analytic") return OptimParams::Derivatives::Analytic;
   if (s == "lagged") return OptimParams::Derivatives::Lagged;
-  throw UsageError("unknown derivatives '" + std::string(s) + "' (expected analytic|lagged|fd|exact)");
+  if (s == "corrected") return OptimParams::Derivatives::Corrected;
+  throw UsageError("unknown derivatives '" + std::string(s) + "' (expected analytic|corrected|lagged|fd|exact)");
 }
 
 const char* method_name(OptimParams::Method m) {
@@ -209,6 +253,7 @@ const char* derivatives_name(OptimParams::Derivatives d) {
     case OptimParams::Derivatives::Exact: return "exact";
     case OptimParams::Derivatives::Analytic: return "analytic";
     case OptimParams::Derivatives::Lagged: return "lagged";
+    case OptimParams::Derivatives::Corrected: return "corrected";
     case OptimParams::Derivatives::FiniteDifference: return "fd";
   }
   return "fd";

@@ -19,7 +19,7 @@ namespace polydual {
 
 struct OptimParams {
   enum class Method : std::uint8_t { None, Local, Global, Untangle };
-  enum class Derivatives : std::uint8_t { FiniteDifference, Exact, Analytic, Lagged };
+  enum class Derivatives : std::uint8_t { FiniteDifference, Exact, Analytic, Lagged, Corrected };
 
   // Optimiser. Default Local (the paper's scheme). Untangle: the local scheme's
   // untangling sweeps only (points of invalid cells and the growing rings around
@@ -38,7 +38,10 @@ struct OptimParams {
   // same objective. Lagged: analytic derivatives of the lagged local objective
   // (optim/lagged_objective.h: only the corners p enters directly, centres R
   // and F held for the visit; the line search's decrease test uses it too, the
-  // exact star test the true centres). Ignored by Global (analytic adjoint gradient).
+  // exact star test the true centres). Corrected: the lagged model plus the
+  // linear term of the held centres' gradient, refreshed before each pass
+  // (optim/lagged_objective.h), so its fixed points are the full objective's.
+  // Ignored by Global (analytic adjoint gradient).
   Derivatives derivatives = Derivatives::Analytic;
   // Local: number of Gauss-Seidel iterations (each = a surface pass then a
   // volume pass). Global: number of rounds (L-BFGS solve, projection, validity
@@ -63,6 +66,17 @@ struct OptimParams {
   // invalid cells remain; then sweeps over all points. Default 5; 0 starts with
   // a sweep over all points (the paper). Every sweep counts toward max_iter.
   int untangle_sweeps = 5;
+  // Local: over-relaxation factor omega of the Newton step (SOR-Newton): omega x
+  // the step is tried first, then the step and its halvings (the same exact
+  // validity test and Armijo decrease on each). 1 = the paper's damped Newton.
+  double relaxation = 1.0;
+  static constexpr double kMaxRelaxation = 1.95;
+  // Local: after the smoothing stops, at most polish_sweeps sweeps over the
+  // points of the cells whose quality exceeds polish_ratio x the mean quality,
+  // while the worst quality drops by more than 1e-4 (relative). They count
+  // toward max_iter. 0: no polish (the paper).
+  int polish_sweeps = 0;
+  double polish_ratio = 1.1;
   // Local and Global: step halvings tried before a move is rejected. Default 20.
   int max_halvings = 20;
   // Finite-difference step, relative to the local length cbrt(V0). Default 1e-4
@@ -96,6 +110,7 @@ struct IterationRecord {
   std::size_t invalid = 0;     // invalid cells, exact star test
   double min_quality = 0;      // over untangled cells, kappa/3
   double mean_quality = 0;
+  double max_quality = 0;
   double seconds = 0;          // wall time since the start of optimize()
   std::uint64_t visited = 0;   // Local: points visited in this sweep (active set)
   std::uint64_t updates = 0;   // Local: accepted moves in this sweep
@@ -124,7 +139,7 @@ OptimReport optimize(PolyMesh& mesh, const ClassifiedTetMesh* primal, const Opti
 // CLI parsers; throw UsageError on an unknown value.
 OptimParams::Method parse_method(std::string_view s);             // none|untangle|local|global
 Metric parse_metric(std::string_view s);                          // q1|q2
-OptimParams::Derivatives parse_derivatives(std::string_view s);   // analytic|lagged|fd|exact
+OptimParams::Derivatives parse_derivatives(std::string_view s);   // analytic|corrected|lagged|fd|exact
 const char* method_name(OptimParams::Method m);
 const char* derivatives_name(OptimParams::Derivatives d);
 
