@@ -104,7 +104,7 @@ TEST(CliOptions, HelpListsEveryOptionWithItsDefault) {
   const Expect cases[] = {
       {"convert", {"-o OUT", "--format vtu|foam", "--feature-angle DEG", "(default 30)", "--no-cleanup",
                    "--collapse-tol X", "(default 0.001)", "--optimize none|untangle|local|global", "(default local)",
-                   "--metric q1|q2", "(default q1)", "--derivatives analytic|lagged|fd|exact", "(default analytic)",
+                   "--metric q1|q2", "(default q1)", "--derivatives corrected|analytic|lagged|fd|exact", "(default corrected)",
                    "--max-iter N", "(default 20)", "--threads N", "--json"}},
       {"generate", {"--tets N", "(default 10000)", "-o OUT"}},
       {"demo", {"--tets N", "(default 20000)", "--out DIR", "(default polydual-demo)", "--domains LIST"}},

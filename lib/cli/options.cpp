@@ -78,9 +78,10 @@ const std::vector<OptionDef> kTable = {
     {"--metric", K::Choice, "q1|q2", kNoRange, kNoRange, "corner set of the optimiser's objective and quality",
      [](const Settings& d) { return std::string(d.params.optim.metric == Metric::Q1 ? "q1" : "q2"); },
      [](Settings& s, const std::string& v) { s.params.optim.metric = parse_metric(v); }},
-    {"--derivatives", K::Choice, "analytic|corrected|lagged|fd|exact", kNoRange, kNoRange,
-     "local-scheme Newton derivatives: closed form, closed form with cell and face centres lagged during a "
-     "visit, finite differences (the paper) or ceres::Jet",
+    {"--derivatives", K::Choice, "corrected|analytic|lagged|fd|exact", kNoRange, kNoRange,
+     "local-scheme Newton derivatives: closed form with the cell and face centres lagged during a visit and "
+     "their gradient added (corrected), closed form, lagged without the correction, finite differences (the "
+     "paper) or ceres::Jet",
      [](const Settings& d) { return std::string(derivatives_name(d.params.optim.derivatives)); },
      [](Settings& s, const std::string& v) { s.params.optim.derivatives = parse_derivatives(v); }},
     {"--relaxation", K::Real, "OMEGA", 1, OptimParams::kMaxRelaxation,
@@ -91,13 +92,16 @@ const std::vector<OptionDef> kTable = {
      "local scheme: sweeps over the points of the worst cells after the smoothing stops",
      [](const Settings& d) { return std::to_string(d.params.optim.polish_sweeps); },
      [](Settings& s, const std::string& v) { s.params.optim.polish_sweeps = std::stoi(v); }},
-    {"--polish-ratio", K::Real, "R", 1, 100,
-     "local scheme: a cell is polished while its quality exceeds R x the mean",
-     [](const Settings& d) { return num(d.params.optim.polish_ratio); },
-     [](Settings& s, const std::string& v) { s.params.optim.polish_ratio = std::stod(v); }},
+    {"--polish-share", K::Real, "S", 0, 1,
+     "local scheme: the polish works on the cells whose quality exceeds mean + S x (worst - mean)",
+     [](const Settings& d) { return num(d.params.optim.polish_share); },
+     [](Settings& s, const std::string& v) { s.params.optim.polish_share = std::stod(v); }},
     {"--tol", K::Real, "X", 0, OptimParams::kMaxTol,
      "stop when a sweep lowers the objective by less than X relative",
-     [](const Settings& d) { return num(d.params.optim.tol); },
+     [](const Settings& d) {
+       return d.params.optim.tol == OptimParams::kMethodTol ? std::string("5e-3 local, 1e-3 global")
+                                                            : num(d.params.optim.tol);
+     },
      [](Settings& s, const std::string& v) { s.params.optim.tol = std::stod(v); }},
     {"--max-iter", K::Int, "N", 0, OptimParams::kMaxIterLimit, "optimiser sweeps (local) or rounds (global), at most",
      [](const Settings& d) { return std::to_string(d.params.optim.max_iter); },

@@ -244,7 +244,7 @@ void run_global(Context& ctx) {
     ctx.cell_valid = valid_now;
     ctx.record(round);
     const double f = ctx.report->iterations.back().objective;
-    if (std::fabs(f_prev - f) < prm.tol * std::fabs(f_prev)) break;
+    if (std::fabs(f_prev - f) < prm.effective_tol() * std::fabs(f_prev)) break;
     f_prev = f;
   }
 }

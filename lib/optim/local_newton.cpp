@@ -58,8 +58,9 @@ class VertexNewton {
         for (int i = 0; i < k; ++i) x += t[i] * B[i];
         return x;
       };
-      const bool corrected = prm.derivatives == OptimParams::Derivatives::Corrected;
-      const bool lagged = prm.derivatives == OptimParams::Derivatives::Lagged || corrected;
+      const OptimParams::Derivatives der = der_ = model_of(cells);
+      const bool corrected = der == OptimParams::Derivatives::Corrected;
+      const bool lagged = der == OptimParams::Derivatives::Lagged || corrected;
       if (lagged)
         lagged_.build(ctx_.stencil, pts, ctx_.V0.data(), prm.metric, p, corrected ? ctx_.grad_R.data() : nullptr,
                       corrected ? ctx_.grad_F.data() : nullptr);
@@ -78,10 +79,10 @@ class VertexNewton {
       double f0;
       Vec g = Vec::Zero();
       Mat H = Mat::Identity();
-      if (prm.derivatives == OptimParams::Derivatives::Analytic || lagged) {
+      if (der == OptimParams::Derivatives::Analytic || lagged) {
         f0 = analytic_derivatives(p, B, k, g, H);
         if (flat) add_planarity(x_of, k, h, prm.planarity, f0, g, H);
-      } else if (prm.derivatives == OptimParams::Derivatives::FiniteDifference) {
+      } else if (der == OptimParams::Derivatives::FiniteDifference) {
         f0 = f(zero);  // the planarity term is in f already
         fd_derivatives(f, k, h, f0, g, H);
       } else {
@@ -134,6 +135,18 @@ class VertexNewton {
   }
 
  private:
+  // The sweep's model, except that a point of a cell whose quality (at the last
+  // record) is above ctx_.full_model_above gets the full analytic model: the
+  // corrected lagged model is first-order in the centres, which does not
+  // recover poorly shaped cells (on a mesh just untangled its max quality
+  // oscillates), while the full model does; such points are few.
+  OptimParams::Derivatives model_of(std::span<const std::uint32_t> cells) const {
+    if (ctx_.derivatives != OptimParams::Derivatives::Corrected) return ctx_.derivatives;
+    for (std::uint32_t c : cells)
+      if (!(ctx_.cell_quality[c] <= ctx_.full_model_above)) return OptimParams::Derivatives::Analytic;
+    return ctx_.derivatives;
+  }
+
   bool keeps_valid(std::span<const std::uint32_t> cells) {
     for (std::uint32_t c : cells)
       if (ctx_.cell_valid[c] &&
@@ -147,8 +160,7 @@ class VertexNewton {
   double analytic_derivatives(PointId p, const Vec3* B, int k, Vec& g, Mat& H) const {
     const auto& prm = ctx_.params;
     double gx[3], Hx[9];
-    const bool lagged = prm.derivatives == OptimParams::Derivatives::Lagged ||
-                        prm.derivatives == OptimParams::Derivatives::Corrected;
+    const bool lagged = der_ == OptimParams::Derivatives::Lagged || der_ == OptimParams::Derivatives::Corrected;
     const double f0 = lagged
                           ? lagged_.derivatives(ctx_.mesh.points[p.idx], prm.c, gx, Hx)
                           : local_objective_derivatives(ctx_.stencil, ctx_.mesh.points.data(), ctx_.V0.data(),
@@ -258,6 +270,7 @@ class VertexNewton {
   }
 
   Context& ctx_;
+  OptimParams::Derivatives der_ = OptimParams::Derivatives::Analytic;  // the current visit's model
   std::vector<Point3> scratch_;
   LaggedObjective lagged_;  // rebuilt at every Newton step of a Lagged visit
   PlanarityTerm planarity_;  // the loops around the visited point (planarity > 0)
@@ -354,24 +367,41 @@ IterationRecord& record_sweep(Context& ctx, int sweep, const IterationRecord& co
 }
 
 // The polish phase (prm.polish_sweeps): sweeps that visit only the points of
-// the cells whose quality is above polish_ratio x the mean, while the worst
-// quality still drops by more than kPolishTol (relative). The slowest cells of
-// the Gauss-Seidel are few, so a polish sweep refreshes the qualities (and
-// centre gradients) of the cells around the polished points only, and the
-// phase ends with one record.
-constexpr double kPolishTol = 1e-4;
+// the cells whose quality is above mean + polish_share x (max - mean) (the slowest cells
+// of the Gauss-Seidel; a polish sweep costs a few percent of a full one), while
+// the worst quality drops by more than kPolishTol (relative). A polish sweep after which the
+// worst quality is not lower is undone (its points restored: every cell was
+// valid before it, so every cell is valid again), so the polish never makes
+// the worst cell worse. Only the cells around the polished points get their
+// qualities and centre gradients refreshed; the phase ends with one record.
+constexpr double kPolishTol = 1e-5;
+// Corrected derivatives: the points of cells above kFullModelRatio x the mean
+// quality use the full analytic model (VertexNewton::model_of).
+constexpr double kFullModelRatio = 1.5;
 
 void polish_worst(Context& ctx, const ColourClasses (&passes)[2], tbb::enumerable_thread_specific<VertexNewton>& solvers,
                   int sweep, std::vector<int>& last_change) {
   const auto& prm = ctx.params;
-  const double threshold = prm.polish_ratio * ctx.last_stats.mean;
+  const double threshold = ctx.last_stats.mean + prm.polish_share * (ctx.last_stats.max - ctx.last_stats.mean);
   std::vector<char> bad(ctx.mesh.num_cells(), 0);
   std::vector<std::uint32_t> region;  // the cells of the points of bad cells
+  std::vector<std::pair<std::uint32_t, Point3>> saved;
   IterationRecord counts;
   double worst = ctx.last_stats.max;
   int k = 0;
   while (k < prm.polish_sweeps && sweep + k < prm.max_iter) {
     for (std::size_t c = 0; c < bad.size(); ++c) bad[c] = char(ctx.cell_quality[c] > threshold);
+    region.clear();
+    saved.clear();
+    for (std::size_t c = 0; c < bad.size(); ++c)
+      if (bad[c])
+        for (PointId q : ctx.stencil.points_of(static_cast<std::uint32_t>(c))) {
+          saved.emplace_back(q.idx, ctx.mesh.points[q.idx]);
+          for (std::uint32_t d : ctx.stencil.cells_of(q)) region.push_back(d);
+        }
+    if (saved.empty()) break;
+    std::sort(region.begin(), region.end());
+    region.erase(std::unique(region.begin(), region.end()), region.end());
     auto active = [&](PointId p) {
       for (std::uint32_t c : ctx.stencil.cells_of(p))
         if (bad[c]) return true;
@@ -382,18 +412,14 @@ void polish_worst(Context& ctx, const ColourClasses (&passes)[2], tbb::enumerabl
     counts.visited += one.visited;
     counts.updates += one.updates;
     if (one.updates == 0) break;
-    region.clear();
-    for (std::size_t c = 0; c < bad.size(); ++c)
-      if (bad[c])
-        for (PointId q : ctx.stencil.points_of(static_cast<std::uint32_t>(c)))
-          for (std::uint32_t d : ctx.stencil.cells_of(q)) region.push_back(d);
-    std::sort(region.begin(), region.end());
-    region.erase(std::unique(region.begin(), region.end()), region.end());
     ctx.refresh_cells(region);
     const double w = *std::max_element(ctx.cell_quality.begin(), ctx.cell_quality.end());
-    const bool stalled = !(w < worst * (1 - kPolishTol));
-    worst = std::min(worst, w);
-    if (stalled) break;
+    if (!(w < worst)) {
+      for (const auto& [q, x] : saved) ctx.mesh.points[q] = x;
+      ctx.refresh_cells(region);
+    }
+    if (!(w < worst * (1 - kPolishTol))) break;
+    worst = w;
   }
   if (k > 0) record_sweep(ctx, sweep + k, counts);
 }
@@ -432,7 +458,14 @@ void run_local(Context& ctx) {
   int sweep = 1;
   for (; sweep <= prm.max_iter; ++sweep) {
     const bool untangling = untangle_left > 0;
-    ctx.omega = untangling ? 1.0 : prm.relaxation;  // no over-relaxation while untangling
+    // Untangling sweeps: no over-relaxation, and the full model instead of the
+    // corrected lagged one (around a tangled cell the centres' motion is what
+    // decides the regularised volumes; the sweeps visit few points).
+    ctx.omega = untangling ? 1.0 : prm.relaxation;
+    ctx.derivatives = untangling && prm.derivatives == OptimParams::Derivatives::Corrected
+                          ? OptimParams::Derivatives::Analytic
+                          : prm.derivatives;
+    ctx.full_model_above = kFullModelRatio * ctx.last_stats.mean;
     // Untangling: rings grow by one cell layer per sweep (changes of the
     // previous sweep only); smoothing: changes of this or the previous sweep.
     const int since = sweep - 1;
@@ -456,11 +489,11 @@ void run_local(Context& ctx) {
     }
     full_sweep = false;
     const double f = rec.objective;
-    if (std::fabs(f_prev - f) < prm.tol * std::fabs(f_prev)) break;
+    if (std::fabs(f_prev - f) < prm.effective_tol() * std::fabs(f_prev)) break;
     f_prev = f;
   }
-  if (!untangle_only && prm.polish_sweeps > 0 && ctx.report->iterations.back().invalid == 0)
-    polish_worst(ctx, passes, solvers, std::min(sweep, prm.max_iter), last_change);
+  if (!untangle_only && prm.polish_sweeps > 0 && prm.max_iter > 0 && ctx.report->iterations.back().invalid == 0)
+    polish_worst(ctx, passes, solvers, sweep, last_change);
 }
 
 }  // namespace polydual::optim_detail

@@ -175,16 +175,22 @@ Json OptimReport::to_json() const {
 }
 
 
+double OptimParams::effective_tol() const {
+  if (tol != kMethodTol) return tol;
+  const bool fast_local = method != Method::Global && relaxation > 1.0 && polish_sweeps > 0;
+  return fast_local ? 5e-3 : 1e-3;
+}
+
 void OptimParams::validate() const {
   check_param("OptimParams::max_iter", "iterations", {0, double(kMaxIterLimit)}, max_iter);
-  check_param("OptimParams::tol", "relative objective change", {0, kMaxTol}, tol);
+  if (tol != kMethodTol) check_param("OptimParams::tol", "relative objective change", {0, kMaxTol}, tol);
   check_param("OptimParams::c", "eq. 3", {kMinDeltaC, kMaxDeltaC}, c);
   check_param("OptimParams::newton_steps", "steps per visit", {1, double(kMaxNewtonSteps)}, newton_steps);
   check_param("OptimParams::settle_move", "relative to cbrt(V0)", {0, 1}, settle_move);
   check_param("OptimParams::untangle_sweeps", "sweeps", {0, double(kMaxUntangleSweeps)}, untangle_sweeps);
   check_param("OptimParams::max_halvings", "halvings", {0, double(kMaxHalvings)}, max_halvings);
   check_param("OptimParams::polish_sweeps", "sweeps", {0, double(kMaxIterLimit)}, polish_sweeps);
-  check_param("OptimParams::polish_ratio", "relative to the mean quality", {1.0, 100.0}, polish_ratio);
+  check_param("OptimParams::polish_share", "share of the range from the mean to the worst quality", {0.0, 1.0}, polish_share);
   check_param("OptimParams::relaxation", "over-relaxation factor", {1.0, kMaxRelaxation}, relaxation);
   check_param("OptimParams::fd_step", "relative to cbrt(V0)", {0, kMaxFdStep, true}, fd_step);
   check_param("OptimParams::global_iterations_per_round", "iterations", {1, double(kMaxIterLimit)},
@@ -201,7 +207,7 @@ Json OptimParams::to_json() const {
   j.set("metric", metric == Metric::Q1 ? "q1" : "q2");
   j.set("derivatives", derivatives_name(derivatives));
   j.set("max_iter", max_iter);
-  j.set("tol", tol);
+  j.set("tol", effective_tol());
   j.set("c", c);
   j.set("newton_steps", newton_steps);
   j.set("settle_move", settle_move);
@@ -209,7 +215,7 @@ Json OptimParams::to_json() const {
   j.set("max_halvings", max_halvings);
   j.set("relaxation", relaxation);
   j.set("polish_sweeps", polish_sweeps);
-  j.set("polish_ratio", polish_ratio);
+  j.set("polish_share", polish_share);
   j.set("fd_step", fd_step);
   j.set("planarity", planarity);
   j.set("global_iterations_per_round", global_iterations_per_round);

@@ -29,7 +29,7 @@ struct OptimParams {
   // Corner set of the objective and of the reported quality. Default Q1 (the
   // paper found it untangles faster).
   Metric metric = Metric::Q1;
-  // Local scheme derivatives. Analytic (default): closed-form gradient and
+  // Local scheme derivatives. Corrected (default, below). Analytic: closed-form gradient and
   // Hessian of the local objective in one pass over the point's corners
   // (proofs/quality.md §6), ~4 objective evaluations per visit against 13 for
   // FiniteDifference, the paper's reference path (central differences,
@@ -42,15 +42,20 @@ struct OptimParams {
   // linear term of the held centres' gradient, refreshed before each pass
   // (optim/lagged_objective.h), so its fixed points are the full objective's.
   // Ignored by Global (analytic adjoint gradient).
-  Derivatives derivatives = Derivatives::Analytic;
+  Derivatives derivatives = Derivatives::Corrected;
   // Local: number of Gauss-Seidel iterations (each = a surface pass then a
   // volume pass). Global: number of rounds (L-BFGS solve, projection, validity
   // check). Default 20.
   int max_iter = 20;
   // Stop when |f_prev - f| < tol * |f_prev| after an iteration (Local: after a
-  // sweep of the smoothing phase). Default 1e-3: a 10^5-tet dual stops after
-  // ~6-8 sweeps; 1e-4 runs ~20 sweeps for the last ~0.2% of mean quality.
-  double tol = 1e-3;
+  // sweep of the smoothing phase). Default kMethodTol: the method's own,
+  // effective_tol() -- 5e-3 for the local scheme with over-relaxation and the
+  // polish (a 10^5-tet dual stops after ~5 smoothing sweeps at the quality the
+  // paper's scheme reaches at 1e-3 in ~7), 1e-3 otherwise (Global, or
+  // relaxation 1 without polish: ~6-8 sweeps or rounds).
+  static constexpr double kMethodTol = -1.0;
+  double tol = kMethodTol;
+  double effective_tol() const;
   // c of eq. 3, delta = V0 / (1 + c exp(V/V0)). Default 50 (paper: 10..100).
   double c = kDefaultDeltaC;
   // Local: Newton steps per vertex visit. Default 1 (more sweeps do the rest).
@@ -69,14 +74,15 @@ struct OptimParams {
   // Local: over-relaxation factor omega of the Newton step (SOR-Newton): omega x
   // the step is tried first, then the step and its halvings (the same exact
   // validity test and Armijo decrease on each). 1 = the paper's damped Newton.
-  double relaxation = 1.0;
+  double relaxation = 1.6;
   static constexpr double kMaxRelaxation = 1.95;
   // Local: after the smoothing stops, at most polish_sweeps sweeps over the
-  // points of the cells whose quality exceeds polish_ratio x the mean quality,
-  // while the worst quality drops by more than 1e-4 (relative). They count
-  // toward max_iter. 0: no polish (the paper).
-  int polish_sweeps = 0;
-  double polish_ratio = 1.1;
+  // points of the cells whose quality exceeds mean + polish_share x (max - mean),
+  // while the worst quality drops by more than 1e-4 (relative); they count
+  // toward max_iter and are reported as one iteration. Default 40 (~5-10 run,
+  // each at a few percent of a full sweep's cost); 0: no polish (the paper).
+  int polish_sweeps = 40;
+  double polish_share = 0.5;
   // Local and Global: step halvings tried before a move is rejected. Default 20.
   int max_halvings = 20;
   // Finite-difference step, relative to the local length cbrt(V0). Default 1e-4
