@@ -75,6 +75,11 @@ const std::vector<OptionDef> kTable = {
     {"--tet-sweeps", K::Int, "N", 0, TetOptParams::kMaxSweeps, "sweeps of the tet optimisation, at most",
      [](const Settings& d) { return std::to_string(d.params.tetopt.max_sweeps); },
      [](Settings& s, const std::string& v) { s.params.tetopt.max_sweeps = std::stoi(v); }},
+    {"--tet-flips", K::Choice, "on|off", kNoRange, kNoRange,
+     "with --optimize-tets: Delaunay 2-3/3-2 flips after the moves (never on a model face or edge; "
+     "the moves alone break the Delaunay property and invert dual edges)",
+     [](const Settings& d) { return std::string(d.params.tetopt.flips.enabled ? "on" : "off"); },
+     [](Settings& s, const std::string& v) { s.params.tetopt.flips.enabled = v == "on"; }},
     {"--metric", K::Choice, "q1|q2", kNoRange, kNoRange, "corner set of the optimiser's objective and quality",
      [](const Settings& d) { return std::string(d.params.optim.metric == Metric::Q1 ? "q1" : "q2"); },
      [](Settings& s, const std::string& v) { s.params.optim.metric = parse_metric(v); }},

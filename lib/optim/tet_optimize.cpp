@@ -320,6 +320,7 @@ void TetOptParams::validate() const {
   check_param("tet optimisation tol", "relative", {0, kMaxTol}, tol);
   check_param("tet optimisation max_halvings", "halvings", {0, double(kMaxHalvings)}, max_halvings);
   check_param("tet optimisation c", "eq. 3", {kMinDeltaC, kMaxDeltaC}, c);
+  flips.validate();
 }
 
 Json TetOptParams::to_json() const {
@@ -329,6 +330,7 @@ Json TetOptParams::to_json() const {
   j.set("tol", tol);
   j.set("max_halvings", max_halvings);
   j.set("c", c);
+  j.set("flips", flips.to_json());
   return j;
 }
 
@@ -377,6 +379,7 @@ TetQualityStats tet_quality_stats(const ClassifiedTetMesh& m, std::span<const Po
 Json TetOptReport::to_json() const {
   Json j = Json::object();
   j.set("before", before.to_json());
+  j.set("after_moves", after_moves.to_json());
   j.set("after", after.to_json());
   j.set("sweeps", sweeps);
   j.set("colours", colours);
@@ -388,6 +391,7 @@ Json TetOptReport::to_json() const {
   for (double f : objective) obj.push(f);
   j.set("objective", obj);
   j.set("seconds", seconds);
+  if (flipped) j.set("flips", flips.to_json());
   return j;
 }
 
@@ -408,7 +412,7 @@ std::vector<Point3> optimized_tet_points(const ClassifiedTetMesh& mesh, const Te
     if (s.frames[v].dof > 0) by_colour[colour[v]].push_back(VertexId(v));
   for (const auto& c : by_colour) rep.movable += c.size();
   run_sweeps(s, by_colour, rep);
-  rep.after = tet_quality_stats(mesh, s.pts);
+  rep.after = rep.after_moves = tet_quality_stats(mesh, s.pts);
   rep.seconds = clock.seconds();
   if (report) *report = std::move(rep);
   return std::move(s.pts);
@@ -458,6 +462,11 @@ TetOptReport optimize_tets(ClassifiedTetMesh& mesh, const TetOptParams& params) 
   std::vector<Point3> pts = optimized_tet_points(mesh, params, &rep);
   const Stopwatch clock;
   mesh = with_points(mesh, std::move(pts));
+  if (params.flips.enabled) {
+    mesh = delaunay_flips(mesh, params.flips, &rep.flips);
+    rep.flipped = true;
+    rep.after = tet_quality_stats(mesh, mesh.points());
+  }
   rep.seconds += clock.seconds();
   return rep;
 }
