@@ -157,6 +157,61 @@ TEST(TetFlip, KeepsTheClassifiedStructureOnMaterialsAndFractures) {
   }
 }
 
+// Model edges inside a region (file-tagged curves: no model face around them)
+// are guarded only by their edge classification: all three faces around such
+// an edge may be free.
+TEST(TetFlip, NeverRemovesAModelEdgeInsideARegion) {
+  RandomMeshParams p;
+  p.seed = 13;
+  p.num_points = 500;
+  TetSoup soup = random_classified_mesh(p);
+  std::int32_t tag = 700;
+  for (std::size_t t = 0; t < soup.tets.size(); t += 7) {  // every edge of every 7th tet
+    const auto& v = soup.tets[t];
+    for (int k = 0; k < 6; ++k) soup.edges.push_back({{v[kTetEdge[k][0]], v[kTetEdge[k][1]]}, tag});
+    ++tag;
+  }
+  const ClassifiedTetMesh m = moved(classify(soup));
+  const std::size_t inner = [&] {
+    std::size_t n = 0;
+    for (std::size_t e = 0; e < m.num_edges(); ++e) n += m.edge_class(EdgeId(e)).dim == 1;
+    return n;
+  }();
+  ASSERT_GT(inner, 500u);
+  TetFlipReport rep;
+  const ClassifiedTetMesh f = delaunay_flips(m, {}, &rep);
+  EXPECT_GT(rep.blocked_constrained_edge, 0u);
+  expect_structure_kept(m, f);
+}
+
+// Strongly perturbed Kuhn lattices (cospherical before the perturbation, many
+// non-convex pairs after): every flip's new tets must be checked positive.
+TEST(TetFlip, PerturbedLatticesStayValid) {
+  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+    SCOPED_TRACE(seed);
+    TetSoup s = kuhn_lattice(6, 6, 6, 1, 1, 1, 2);
+    std::uint64_t x = seed * 0x9E3779B97F4A7C15ull;
+    for (Point3& q : s.points)
+      for (int k = 0; k < 3; ++k) {
+        x ^= x << 13, x ^= x >> 7, x ^= x << 17;  // xorshift: portable
+        const double r = (double(x >> 11) / double(1ull << 53) - 0.5) * 0.5;
+        if (q[k] != 0 && q[k] != 6) q[k] += r;
+      }
+    ClassifiedTetMesh m;
+    try {
+      m = classify(s);
+    } catch (const InputError&) {
+      continue;  // the perturbation inverted a tet: not an input
+    }
+    TetFlipReport rep;
+    const ClassifiedTetMesh f = delaunay_flips(m, {}, &rep);
+    std::printf("seed %llu: flips %llu, blocked non-convex %llu\n", (unsigned long long)seed,
+                (unsigned long long)(rep.flips23 + rep.flips32), (unsigned long long)rep.blocked_nonconvex);
+    EXPECT_GT(rep.flips23 + rep.flips32, 100u);
+    expect_structure_kept(m, f);
+  }
+}
+
 TEST(TetFlip, DegenerateLatticePointsStayPositive) {
   // Many cospherical and coplanar points: insphere Zero never flips, orient3d
   // Zero never creates a flat tet.
