@@ -269,6 +269,26 @@ TEST(TetFlip, OptimizeTetsRunsTheFlipsAndReportsThem) {
   for (std::size_t v = 0; v < m.num_vertices(); ++v) EXPECT_EQ(m.vertex_class(VertexId(v)), input.vertex_class(VertexId(v)));
 }
 
+TEST(TetFlip, RoundsAlternateMovesAndFlips) {
+  ClassifiedTetMesh one = random_mesh(7, 2, true, 500), three = one;
+  const ClassifiedTetMesh input = one;
+  TetOptParams p;
+  p.enabled = true;
+  const TetOptReport r1 = optimize_tets(one, p);
+  p.flips.rounds = 3;
+  const TetOptReport r3 = optimize_tets(three, p);
+  EXPECT_EQ(r1.rounds, 1);
+  EXPECT_EQ(r3.rounds, 3);
+  EXPECT_GT(r3.flips.flips23 + r3.flips.flips32, r1.flips.flips23 + r1.flips.flips32);
+  EXPECT_GT(r3.sweeps, r1.sweeps);
+  EXPECT_LT(r3.after.mean, r1.after.mean);  // the later moves improve what the flips made
+  EXPECT_EQ(r3.flips.after.free, count_non_delaunay(three).free);
+  EXPECT_EQ(non_positive_tets(three), 0u);
+  EXPECT_EQ(model_face_triangles(three).size(), model_face_triangles(input).size());
+  p.flips.rounds = 0;
+  EXPECT_THROW(p.validate(), UsageError);
+}
+
 TEST(TetFlip, IdenticalForOneAndTwoThreads) {
   const ClassifiedTetMesh input = random_mesh(8, 2, true, 400);
   auto run = [&](int threads) {

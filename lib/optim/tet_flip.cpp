@@ -326,12 +326,14 @@ ClassifiedTetMesh rebuild(const ClassifiedTetMesh& mesh, const FlipMesh& w) {
 
 void TetFlipParams::validate() const {
   check_param("tet flips max_flips_per_tet", "flips per tet", {0, double(kMaxFlipsPerTet)}, max_flips_per_tet);
+  check_param("tet flips rounds", "rounds", {1, double(kMaxRounds)}, rounds);
 }
 
 Json TetFlipParams::to_json() const {
   Json j = Json::object();
   j.set("enabled", enabled);
   j.set("max_flips_per_tet", max_flips_per_tet);
+  j.set("rounds", rounds);
   return j;
 }
 

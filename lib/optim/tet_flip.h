@@ -43,8 +43,12 @@ struct TetFlipParams {
   // At most max_flips_per_tet * (number of tets) flips; the pass stops there
   // and reports hit_limit. Default 50 (never reached in the measured runs).
   int max_flips_per_tet = 50;
+  // optimize_tets(): the moves (to convergence) then the flips, `rounds`
+  // times (the moves improve the tets the flips made, the last flips restore
+  // the Delaunay property). Default 1.
+  int rounds = 1;
 
-  static constexpr int kMaxFlipsPerTet = 100000;
+  static constexpr int kMaxFlipsPerTet = 100000, kMaxRounds = 100;
   // Throws UsageError naming a field outside its range.
   void validate() const;
   Json to_json() const;

@@ -390,6 +390,7 @@ Json TetOptReport::to_json() const {
   Json obj = Json::array();
   for (double f : objective) obj.push(f);
   j.set("objective", obj);
+  j.set("rounds", rounds);
   j.set("seconds", seconds);
   if (flipped) j.set("flips", flips.to_json());
   return j;
@@ -457,17 +458,41 @@ ClassifiedTetMesh with_points(const ClassifiedTetMesh& mesh, std::vector<Point3>
   return out;
 }
 
+namespace {
+
+// Adds one round's move statistics to the stage's report.
+void add_round(TetOptReport& rep, const TetOptReport& r) {
+  rep.sweeps += r.sweeps;
+  rep.colours = std::max(rep.colours, r.colours);
+  rep.movable = r.movable;
+  rep.visits += r.visits, rep.moves += r.moves, rep.rejected_invalid += r.rejected_invalid;
+  rep.objective.insert(rep.objective.end(), r.objective.begin(), r.objective.end());
+  rep.after_moves = r.after;
+  ++rep.rounds;
+}
+
+}  // namespace
+
 TetOptReport optimize_tets(ClassifiedTetMesh& mesh, const TetOptParams& params) {
-  TetOptReport rep;
-  std::vector<Point3> pts = optimized_tet_points(mesh, params, &rep);
+  params.validate();
   const Stopwatch clock;
-  mesh = with_points(mesh, std::move(pts));
-  if (params.flips.enabled) {
-    mesh = delaunay_flips(mesh, params.flips, &rep.flips);
+  TetOptReport rep;
+  rep.before = tet_quality_stats(mesh, mesh.points());
+  const int rounds = params.flips.enabled ? params.flips.rounds : 1;
+  for (int round = 0; round < rounds; ++round) {
+    TetOptReport r;
+    std::vector<Point3> pts = optimized_tet_points(mesh, params, &r);
+    add_round(rep, r);
+    mesh = with_points(mesh, std::move(pts));
+    if (!params.flips.enabled) continue;
+    TetFlipReport f;
+    mesh = delaunay_flips(mesh, params.flips, &f);
+    if (round == 0) rep.flips = f;
+    else rep.flips.accumulate(f);
     rep.flipped = true;
-    rep.after = tet_quality_stats(mesh, mesh.points());
   }
-  rep.seconds += clock.seconds();
+  rep.after = tet_quality_stats(mesh, mesh.points());
+  rep.seconds = clock.seconds();
   return rep;
 }
 

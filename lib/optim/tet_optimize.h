@@ -75,7 +75,8 @@ struct TetOptReport {
   std::size_t movable = 0;               // vertices with a degree of freedom
   std::uint64_t visits = 0, moves = 0;   // vertex visits, accepted moves (all sweeps)
   std::uint64_t rejected_invalid = 0;    // trial points rejected because a tet turned non-positive
-  std::vector<double> objective;         // after sweep i (index 0: initial)
+  std::vector<double> objective;         // after sweep i (index 0: initial); rounds > 1 append theirs
+  int rounds = 0;                        // moves (+ flips) rounds run
   double seconds = 0;  // the whole stage, flips and mesh rebuilds included
   bool flipped = false; // the flip pass ran (flips below)
   TetFlipReport flips;
