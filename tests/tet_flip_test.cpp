@@ -6,7 +6,10 @@
 
 #include <tbb/global_control.h>
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <filesystem>
 #include <set>
 #include <tuple>
 
@@ -17,6 +20,7 @@
 #include "optim/tet_flip.h"
 #include "optim/tet_optimize.h"
 #include "predicates/predicates.h"
+#include "run_command.h"
 
 namespace polydual {
 namespace {
@@ -303,6 +307,32 @@ TEST(TetFlip, IdenticalForOneAndTwoThreads) {
   ASSERT_EQ(a.num_tets(), b.num_tets());
   for (std::size_t t = 0; t < a.num_tets(); ++t) EXPECT_EQ(a.tet(TetId(t)), b.tet(TetId(t)));
   EXPECT_EQ(a.points(), b.points());
+}
+
+// The command: --optimize-tets flips by default and reports it in the
+// optimize_tets stage's JSON; --tet-flips off does not flip; bad values are
+// usage errors (exit 2) naming the option.
+TEST(TetFlip, CommandLineOptions) {
+  namespace fs = std::filesystem;
+  const fs::path d = fs::temp_directory_path() / ("polydual_tet_flip_test_" + std::to_string(::getpid()));
+  fs::create_directories(d);
+  const std::string msh = (d / "t.msh").string(), vtu = (d / "t.vtu").string();
+  ASSERT_EQ(testing::run_polydual("generate twomat --tets 2000 -o " + msh).code, 0);
+  const std::string base = "convert " + msh + " -o " + vtu + " --force --json --optimize none --optimize-tets";
+  const testing::CmdResult on = testing::run_polydual(base);
+  ASSERT_EQ(on.code, 0) << on.out;
+  EXPECT_NE(on.out.find("\"flips23\""), std::string::npos);
+  EXPECT_NE(on.out.find("\"non_delaunay_after\""), std::string::npos);
+  const testing::CmdResult off = testing::run_polydual(base + " --tet-flips off");
+  ASSERT_EQ(off.code, 0) << off.out;
+  EXPECT_EQ(off.out.find("\"flips23\""), std::string::npos);
+  const testing::CmdResult bad = testing::run_polydual(base + " --tet-flips maybe");
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.out.find("--tet-flips"), std::string::npos) << bad.out;
+  const testing::CmdResult rounds = testing::run_polydual(base + " --tet-flip-rounds 0");
+  EXPECT_EQ(rounds.code, 2);
+  EXPECT_NE(rounds.out.find("--tet-flip-rounds"), std::string::npos) << rounds.out;
+  fs::remove_all(d);
 }
 
 }  // namespace
