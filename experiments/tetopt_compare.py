@@ -5,7 +5,7 @@
 
     /usr/bin/python3 experiments/tetopt_compare.py [--polydual build/polydual]
         [--out results_tetopt] [--sizes 20000,100000] [--domains cube,...]
-        [--variants none,local,global,tetopt_none,tetopt_local,tetopt_global]
+        [--variants none,local,global,tetopt_none,tetopt_local,tetopt_noflip_none,...]
         [--paper] [--force]
 
 STEP 1 generates each domain with `polydual generate`; STEP 2 converts every
@@ -30,15 +30,22 @@ VARIANTS = {
     "none": ["--optimize", "none"],
     "local": ["--optimize", "local"],
     "global": ["--optimize", "global"],
+    # --optimize-tets: the moves, then the Delaunay flips (the default) ...
     "tetopt_none": ["--optimize-tets", "--optimize", "none"],
     "tetopt_local": ["--optimize-tets", "--optimize", "local"],
     "tetopt_global": ["--optimize-tets", "--optimize", "global"],
+    # ... or the moves alone (--tet-flips off), as before the flip pass.
+    "tetopt_noflip_none": ["--optimize-tets", "--tet-flips", "off", "--optimize", "none"],
+    "tetopt_noflip_local": ["--optimize-tets", "--tet-flips", "off", "--optimize", "local"],
+    # ... or N rounds of moves then flips (--tet-flip-rounds N).
+    "tetopt_r2_none": ["--optimize-tets", "--tet-flip-rounds", "2", "--optimize", "none"],
+    "tetopt_r3_none": ["--optimize-tets", "--tet-flip-rounds", "3", "--optimize", "none"],
     # The face-flatness term (issue 15 part 2), local scheme.
     "planarity_1": ["--optimize", "local", "--planarity", "1"],
     "planarity_10": ["--optimize", "local", "--planarity", "10"],
     "planarity_100": ["--optimize", "local", "--planarity", "100"],
 }
-DEFAULT_VARIANTS = [v for v in VARIANTS if not v.startswith("planarity")]
+DEFAULT_VARIANTS = [v for v in VARIANTS if not v.startswith("planarity") and v != "tetopt_global"]
 
 
 def write_json(path, obj):
@@ -130,25 +137,48 @@ def opt_quality(s):
     return (o.get("quality_after") or {}).get("mean"), o.get("seconds")
 
 
+def updates(s):
+    """The local optimiser's vertex updates: its work, free of the machine's load."""
+    return ((s or {}).get("optimize") or {}).get("vertex_updates")
+
+
 def keys(recs):
     ks = sorted({(r["size"], r["domain"]) for r in recs}, key=lambda k: (k[0], DOMAINS.index(k[1]) if k[1] in DOMAINS else 99))
     return ks
 
 
 def table_tetopt(recs):
+    """Moves alone (tetopt_noflip_*) and moves + flips (tetopt_*) against the
+    raw input: tet quality, invalid cells before the dual's optimiser, and the
+    local optimiser's final quality, invalid cells and time."""
     rows = []
     for size, d in keys(recs):
-        raw, pre = get(recs, d, size, "none"), get(recs, d, size, "tetopt_none")
-        if not raw or not pre:
+        raw, loc = get(recs, d, size, "none"), get(recs, d, size, "local")
+        if not raw:
             continue
-        t = pre.get("optimize_tets", {})
-        loc, ploc = get(recs, d, size, "local"), get(recs, d, size, "tetopt_local")
-        rows.append([d, raw["tets"], t["before"]["mean"], t["after"]["mean"], t["before"]["max"], t["after"]["max"],
-                     t["sweeps"], t["seconds"], raw["invalid_before"], pre["invalid_before"],
-                     opt_quality(loc)[0] if loc else None, opt_quality(ploc)[0] if ploc else None,
-                     loc["invalid_after"] if loc else None, ploc["invalid_after"] if ploc else None])
-    return md(["domain", "tets", "tet q mean before", "after", "tet q max before", "after", "sweeps", "tet opt s",
-               "invalid cells (raw)", "invalid cells (pre-opt)", "local mean κ/3 (raw)", "(pre-opt)",
+        for label, pre_v, loc_v in (("moves", "tetopt_noflip_none", "tetopt_noflip_local"),
+                                    ("moves + flips", "tetopt_none", "tetopt_local"),
+                                    ("2 rounds", "tetopt_r2_none", None), ("3 rounds", "tetopt_r3_none", None)):
+            pre, ploc = get(recs, d, size, pre_v), get(recs, d, size, loc_v) if loc_v else None
+            loc = get(recs, d, size, "local") if loc_v else None  # rounds rows: no local columns
+            if not pre:
+                continue
+            t = pre.get("optimize_tets", {})
+            fl = t.get("flips")
+            rows.append([d, raw["tets"], label, pre["tets"], t["before"]["mean"], t["after"]["mean"], t["after"]["max"],
+                         fl["non_delaunay_before"]["free"] if fl else None,
+                         fl["non_delaunay_after"]["free"] if fl else None,
+                         fl["non_delaunay_after"]["constrained"] if fl else None,
+                         fl["flips23"] + fl["flips32"] if fl else None, t["seconds"],
+                         raw["invalid_before"], pre["invalid_before"],
+                         opt_quality(loc)[0] if loc else None, opt_quality(ploc)[0] if ploc else None,
+                         opt_quality(loc)[1] if loc else None, opt_quality(ploc)[1] if ploc else None,
+                         updates(loc), updates(ploc),
+                         loc["invalid_after"] if loc else None, ploc["invalid_after"] if ploc else None])
+    return md(["domain", "tets (raw)", "pre-opt", "tets (pre-opt)", "tet q mean before", "after", "tet q max after",
+               "non-Delaunay free faces before flips", "after", "non-Delaunay model faces after", "flips",
+               "tet opt s", "invalid cells (raw)", "invalid cells (pre-opt)", "local mean κ/3 (raw)", "(pre-opt)",
+               "local s (raw)", "(pre-opt)", "local vertex updates (raw)", "(pre-opt)",
                "local invalid after (raw)", "(pre-opt)"], rows)
 
 
@@ -168,7 +198,7 @@ def table_local_global(recs):
 def table_flatness(recs):
     rows = []
     for size, d in keys(recs):
-        for v in ("none", "local", "global", "tetopt_local"):
+        for v in ("none", "local", "global", "tetopt_local", "tetopt_noflip_local"):
             s = get(recs, d, size, v)
             if not s or "face_flatness" not in s:
                 continue
@@ -274,7 +304,11 @@ def render(args):
         text = ("# Tet pre-optimisation, local against global, face flatness\n\n"
                 "Generated by `experiments/tetopt_compare.py --paper` from its records; do not edit by hand.\n"
                 "Quality is mean κ/3 (1 best). Times are wall seconds of the stage on a shared 2-core machine.\n\n"
-                "## With and without `--optimize-tets`\n\n" + tables["tetopt_pre"] +
+                "## With and without `--optimize-tets`\n\n"
+                "pre-opt: `moves` is `--optimize-tets --tet-flips off` (condition-number moves alone), `moves + flips` "
+                "`--optimize-tets` (the default: the moves, then Delaunay flips), `N rounds` `--tet-flip-rounds N`. "
+                "Invalid cells are those of the initial dual (before the dual's optimiser); the local vertex updates "
+                "count the local optimiser's work, which the machine's load does not change.\n\n" + tables["tetopt_pre"] +
                 "\n## Local against global optimiser\n\n" + tables["local_global"] +
                 "\n## Face flatness of the dual (OpenFOAM's measure; best-fit plane deviation / diameter)\n\n" +
                 tables["flatness"])
@@ -326,7 +360,7 @@ def parse_common_args(ap, argv, variants):
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     add_common_args(ap, "results_tetopt", "20000,100000", DOMAINS, DEFAULT_VARIANTS,
-                    "default: all but the planarity_* variants (add them by name)")
+                    "default: all but tetopt_global and the planarity_* variants (add them by name)")
     ap.add_argument("--paper", action="store_true", help="write paper/tetopt_tables.md")
     args = parse_common_args(ap, argv, VARIANTS)
     if not args.render_only:

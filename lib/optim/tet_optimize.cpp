@@ -320,6 +320,7 @@ void TetOptParams::validate() const {
   check_param("tet optimisation tol", "relative", {0, kMaxTol}, tol);
   check_param("tet optimisation max_halvings", "halvings", {0, double(kMaxHalvings)}, max_halvings);
   check_param("tet optimisation c", "eq. 3", {kMinDeltaC, kMaxDeltaC}, c);
+  flips.validate();
 }
 
 Json TetOptParams::to_json() const {
@@ -329,6 +330,7 @@ Json TetOptParams::to_json() const {
   j.set("tol", tol);
   j.set("max_halvings", max_halvings);
   j.set("c", c);
+  j.set("flips", flips.to_json());
   return j;
 }
 
@@ -377,6 +379,7 @@ TetQualityStats tet_quality_stats(const ClassifiedTetMesh& m, std::span<const Po
 Json TetOptReport::to_json() const {
   Json j = Json::object();
   j.set("before", before.to_json());
+  j.set("after_moves", after_moves.to_json());
   j.set("after", after.to_json());
   j.set("sweeps", sweeps);
   j.set("colours", colours);
@@ -387,7 +390,9 @@ Json TetOptReport::to_json() const {
   Json obj = Json::array();
   for (double f : objective) obj.push(f);
   j.set("objective", obj);
+  j.set("rounds", rounds);
   j.set("seconds", seconds);
+  if (flipped) j.set("flips", flips.to_json());
   return j;
 }
 
@@ -408,7 +413,7 @@ std::vector<Point3> optimized_tet_points(const ClassifiedTetMesh& mesh, const Te
     if (s.frames[v].dof > 0) by_colour[colour[v]].push_back(VertexId(v));
   for (const auto& c : by_colour) rep.movable += c.size();
   run_sweeps(s, by_colour, rep);
-  rep.after = tet_quality_stats(mesh, s.pts);
+  rep.after = rep.after_moves = tet_quality_stats(mesh, s.pts);
   rep.seconds = clock.seconds();
   if (report) *report = std::move(rep);
   return std::move(s.pts);
@@ -453,12 +458,41 @@ ClassifiedTetMesh with_points(const ClassifiedTetMesh& mesh, std::vector<Point3>
   return out;
 }
 
+namespace {
+
+// Adds one round's move statistics to the stage's report.
+void add_round(TetOptReport& rep, const TetOptReport& r) {
+  rep.sweeps += r.sweeps;
+  rep.colours = std::max(rep.colours, r.colours);
+  rep.movable = r.movable;
+  rep.visits += r.visits, rep.moves += r.moves, rep.rejected_invalid += r.rejected_invalid;
+  rep.objective.insert(rep.objective.end(), r.objective.begin(), r.objective.end());
+  rep.after_moves = r.after;
+  ++rep.rounds;
+}
+
+}  // namespace
+
 TetOptReport optimize_tets(ClassifiedTetMesh& mesh, const TetOptParams& params) {
-  TetOptReport rep;
-  std::vector<Point3> pts = optimized_tet_points(mesh, params, &rep);
+  params.validate();
   const Stopwatch clock;
-  mesh = with_points(mesh, std::move(pts));
-  rep.seconds += clock.seconds();
+  TetOptReport rep;
+  rep.before = tet_quality_stats(mesh, mesh.points());
+  const int rounds = params.flips.enabled ? params.flips.rounds : 1;
+  for (int round = 0; round < rounds; ++round) {
+    TetOptReport r;
+    std::vector<Point3> pts = optimized_tet_points(mesh, params, &r);
+    add_round(rep, r);
+    mesh = with_points(mesh, std::move(pts));
+    if (!params.flips.enabled) continue;
+    TetFlipReport f;
+    mesh = delaunay_flips(mesh, params.flips, &f);
+    if (round == 0) rep.flips = f;
+    else rep.flips.accumulate(f);
+    rep.flipped = true;
+  }
+  rep.after = tet_quality_stats(mesh, mesh.points());
+  rep.seconds = clock.seconds();
   return rep;
 }
 

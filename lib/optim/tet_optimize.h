@@ -19,7 +19,9 @@
 //    planar entity and on it up to rounding otherwise;
 //  - a move is accepted only if every tet around the vertex stays positive by
 //    the exact orient3d and the local objective decreases (step halving).
-// Topology and classification are never changed: only coordinates move.
+// The moves never change topology or classification. optimize_tets() then
+// runs the Delaunay flip pass (optim/tet_flip.h, `flips`): moves without flips
+// break the Delaunay property of the input and invert dual edges.
 #pragma once
 #include <cstdint>
 #include <span>
@@ -27,6 +29,7 @@
 
 #include "core/json.h"
 #include "mesh/classified_tet_mesh.h"
+#include "optim/tet_flip.h"
 
 namespace polydual {
 
@@ -41,6 +44,8 @@ struct TetOptParams {
   int max_halvings = 20;
   // c of eq. 3 (delta of kappa_mod). Default 50 like the dual's optimiser.
   double c = 50.0;
+  // The flip pass after the moves (optimize_tets only). Default on.
+  TetFlipParams flips;
 
   static constexpr int kMaxSweeps = 10000, kMaxHalvings = 60;
   static constexpr double kMaxTol = 1.0, kMinDeltaC = 1.0, kMaxDeltaC = 1000.0;
@@ -62,14 +67,19 @@ struct TetQualityStats {
 TetQualityStats tet_quality_stats(const ClassifiedTetMesh& mesh, std::span<const Point3> points);
 
 struct TetOptReport {
-  TetQualityStats before, after;
+  // before: the input; after_moves: after the sweeps; after: the result
+  // (after the flips when they ran, else after_moves).
+  TetQualityStats before, after_moves, after;
   int sweeps = 0;
   std::uint32_t colours = 0;
   std::size_t movable = 0;               // vertices with a degree of freedom
   std::uint64_t visits = 0, moves = 0;   // vertex visits, accepted moves (all sweeps)
   std::uint64_t rejected_invalid = 0;    // trial points rejected because a tet turned non-positive
-  std::vector<double> objective;         // after sweep i (index 0: initial)
-  double seconds = 0;
+  std::vector<double> objective;         // after sweep i (index 0: initial); rounds > 1 append theirs
+  int rounds = 0;                        // moves (+ flips) rounds run
+  double seconds = 0;  // the whole stage, flips and mesh rebuilds included
+  bool flipped = false; // the flip pass ran (flips below)
+  TetFlipReport flips;
   Json to_json() const;
 };
 
@@ -82,7 +92,8 @@ std::vector<Point3> optimized_tet_points(const ClassifiedTetMesh& mesh, const Te
 // the result is not positive by the exact orient3d.
 ClassifiedTetMesh with_points(const ClassifiedTetMesh& mesh, std::vector<Point3> points);
 
-// Both in one: replaces `mesh` by its optimised version and reports.
+// Moves, then (params.flips.enabled) the flip pass: replaces `mesh` by the
+// result and reports. With flips the tets are renumbered (tet_flip.h).
 TetOptReport optimize_tets(ClassifiedTetMesh& mesh, const TetOptParams& params);
 
 }  // namespace polydual
