@@ -377,7 +377,7 @@ IterationRecord& record_sweep(Context& ctx, int sweep, const IterationRecord& co
 constexpr double kPolishTol = 1e-5;
 // Corrected derivatives: the points of cells above kFullModelRatio x the mean
 // quality use the full analytic model (VertexNewton::model_of).
-constexpr double kFullModelRatio = 1.5;
+constexpr double kFullModelRatio = 1.2;
 
 void polish_worst(Context& ctx, const ColourClasses (&passes)[2], tbb::enumerable_thread_specific<VertexNewton>& solvers,
                   int sweep, std::vector<int>& last_change) {
