@@ -54,6 +54,9 @@ VARIANTS = {
     "tetopt_local_q1_fd": ("tetopt", "local", "q1", "fd", "compare"),
     "tetopt_global_q1": ("tetopt", "global", "q1", "exact", "compare"),
 }
+# The local variants reproduce the paper's scheme: its damped Newton (no
+# over-relaxation, no polish) and its tolerance, not polydual's faster default.
+PAPER_LOCAL = ["--relaxation", "1", "--polish-sweeps", "0", "--tol", "1e-3"]
 SMOKE_VARIANTS = ["none", "global_q1", "local_q1_fd", "tetopt_none", "tetopt_global_q1"]
 
 
@@ -154,7 +157,7 @@ class Harness:
         src = os.path.join(d, f"{domain}.msh")
         vtu = os.path.join(d, f"{variant}.vtu")
         cmd = [self.polydual, "convert", src, "-o", vtu, "--json", "--optimize", opt,
-               "--metric", metric, "--derivatives", deriv]
+               "--metric", metric, "--derivatives", deriv] + (PAPER_LOCAL if opt == "local" else [])
         if inp == "tetopt":
             cmd += ["--optimize-tets"]
         if self.a.max_iter:
@@ -194,7 +197,7 @@ class Harness:
         case = os.path.join(d, f"foam_polydual_{variant}")
         cmd = ["/usr/bin/time", "-v", self.polydual, "convert", src, "-o", case,
                "--format", "foam", "--json", "--optimize", opt, "--metric", metric,
-               "--derivatives", deriv]
+               "--derivatives", deriv] + (PAPER_LOCAL if opt == "local" else [])
         if self.a.max_iter:
             cmd += ["--max-iter", str(self.a.max_iter)]
         if self.cached(name, cmd):
