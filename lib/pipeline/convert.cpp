@@ -248,8 +248,11 @@ void require_valid(const ConvertResult& r) {
   throw InputError(r.primal.source(), "", what);
 }
 
-// The stages from classify to the final check, appended to r.report.
-void run_pipeline(ConvertResult& r, const TetSoup& soup, const PipelineParams& params, const ConvertHooks& hooks) {
+// The stages from classify to the final check, appended to r.report. A soup
+// the caller owns (`release`, may be null) is freed once classified: it is
+// not needed after, and the split rounds are the memory peak.
+void run_pipeline(ConvertResult& r, const TetSoup& soup, const PipelineParams& params, const ConvertHooks& hooks,
+                  TetSoup* release = nullptr) {
   ConvertReport& rep = r.report;
   r.ignored = soup.ignored;
   r.warnings = soup.warnings;
@@ -259,6 +262,7 @@ void run_pipeline(ConvertResult& r, const TetSoup& soup, const PipelineParams& p
     stats = st.to_json();
     return m;
   });
+  if (release) *release = TetSoup{};
   if (params.tetopt.enabled)
     run_stage(rep, hooks, "optimize_tets", [&](Json& stats) { stats = optimize_tets(r.primal, params.tetopt).to_json(); return 0; });
   // What the classification completed (an incomplete given classification).
@@ -343,13 +347,13 @@ ConvertResult convert_file(const std::string& in, const std::string& out, PolyFo
                       options.foam.force, format == PolyFormat::Vtu ? ".vtu" : "");
   const Stopwatch clock;
   ConvertResult r;
-  const TetSoup soup = run_stage(r.report, hooks, "read", [&](Json& stats) {
+  TetSoup soup = run_stage(r.report, hooks, "read", [&](Json& stats) {
     TetSoup s = read_tet_mesh(in);
     stats = Json::object();
     stats.set("path", in);
     return s;
   });
-  run_pipeline(r, soup, params, hooks);
+  run_pipeline(r, soup, params, hooks, &soup);
   r.written = run_stage(r.report, hooks, "write", [&](Json& stats) {
     Json w = write_result(r, out, format, options);
     stats = w;

@@ -49,23 +49,28 @@ std::size_t warm_start(PolyMesh& fresh, const PolyMesh& old, const ClassifiedTet
   if (fresh.point_origin.size() != fresh.points.size() || old.point_origin.size() != old.points.size()) return 0;
   const OriginSlots slots(m);
   const std::vector<std::uint32_t> where = points_of_origins(old, slots);
-  std::vector<std::uint32_t> mine;
-  if (from_old) {
-    mine = points_of_origins(fresh, slots);
-    from_old->assign(fresh.points.size(), PointId::invalid());
-  }
+  if (from_old) from_old->assign(fresh.points.size(), PointId::invalid());
+  std::vector<std::uint8_t> taken;  // per old point, how many fresh points name its origin (saturating)
+  if (from_old) taken.assign(old.points.size(), 0);
   std::size_t moved = 0;
   for (std::size_t i = 0; i < fresh.points.size(); ++i) {
     const std::size_t s = slots.of(fresh.point_origin[i]);
     if (s == slots.size()) continue;
     const std::uint32_t w = where[s];
     if (w == kNone || w == kShared) continue;
-    // One point each side: a one-to-one correspondence (split/recheck.h).
-    if (from_old && mine[s] == std::uint32_t(i)) (*from_old)[i] = PointId(w);
+    if (from_old) {
+      (*from_old)[i] = PointId(w);
+      taken[w] = std::uint8_t(std::min(2, taken[w] + 1));
+    }
     if (pinned(m, &cuts, fresh.point_origin[i])) continue;
     fresh.points[i] = old.points[w];
     ++moved;
   }
+  // One point each side: an origin shared by several fresh points maps none
+  // of them, so that from_old is one-to-one (split/recheck.h).
+  if (from_old)
+    for (PointId& q : *from_old)
+      if (q.valid() && taken[q.idx] > 1) q = PointId::invalid();
   return moved;
 }
 
