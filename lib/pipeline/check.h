@@ -20,6 +20,7 @@ struct CheckResult {
   std::size_t invalid_cells = 0;      // cells whose verdict is not valid
   std::uint64_t decomposition_tets = 0;  // star-test tets evaluated
   std::uint64_t exact_fallbacks = 0;     // of which reached the exact path
+  std::vector<std::uint32_t> cell_exact;  // per cell, its exact fallbacks (empty: not known)
   double seconds = 0;
   Json to_json() const;  // counts only (the verdicts go into the cell data)
 };
@@ -28,6 +29,12 @@ struct CheckResult {
 // primal volumes are then not checked. Without `with_validation` only the
 // verdicts are computed (validation stays default).
 CheckResult check_mesh(const PolyMesh& mesh, const ClassifiedTetMesh* primal, bool with_validation = true);
+
+// The same result as check_mesh(mesh, primal, true) when `known` holds the
+// verdicts and per-cell exact fallbacks of this very mesh (a check_mesh of
+// it, or split/recheck.h): the validation runs, the star test is not redone.
+// exact_fallbacks is the sum of known.cell_exact.
+CheckResult check_with_known_verdicts(const PolyMesh& mesh, const ClassifiedTetMesh* primal, CheckResult known);
 
 // The per-cell arrays the writers store beside the mesh ("valid", "bad_tets").
 std::vector<CellField> verdict_fields(const std::vector<CellVerdict>& verdicts);

@@ -9,6 +9,7 @@
 #include "io/output_guard.h"
 #include "io/read_tet_mesh.h"
 #include "split/cuts.h"
+#include "split/recheck.h"
 #include "split/split.h"
 #include "split/warm_start.h"
 
@@ -105,17 +106,21 @@ VertexCuts union_of_cuts(const SplitState& st, const ClassifiedTetMesh& m) {
 }
 
 // One round: rebuild with the union of cuts, the points not pinned by a whole
-// vertex warm-started from r.mesh (the previous positions), check (verdicts
-// only). Returns the round's record.
-Json split_round(ConvertResult& r, SplitState& st, const PipelineParams& params) {
+// vertex warm-started from `old` (the previous mesh), check (verdicts only;
+// the cells equal to one of `old` keep their verdict in old_check,
+// split/recheck.h). Leaves the new mesh and its check in r; returns the
+// round's record.
+Json split_round(ConvertResult& r, const PolyMesh& old, const CheckResult& old_check, SplitState& st,
+                 const PipelineParams& params) {
   st.cuts = union_of_cuts(st, r.primal);
   PolyMesh fresh = build_dual(r.primal, params.dual, nullptr, &st.cuts);
   Json j = Json::object();
   j.set("vertices_whole", std::size_t(std::count(st.whole.begin(), st.whole.end(), char(1))));
   j.set("cells", fresh.num_cells());
-  j.set("points_warm_started", warm_start(fresh, r.mesh, r.primal, st.cuts));
+  std::vector<PointId> from_old;
+  j.set("points_warm_started", warm_start(fresh, old, r.primal, st.cuts, &from_old));
+  r.check = recheck_mesh(fresh, old, old_check, from_old);
   r.mesh = std::move(fresh);
-  r.check = check_mesh(r.mesh, &r.primal, false);
   j.set("invalid_after", r.check.invalid_cells);
   return j;
 }
@@ -166,24 +171,40 @@ std::vector<char> split_region(const ClassifiedTetMesh& m, const VertexCuts& cut
 void run_split(ConvertResult& r, SplitState& st, const PipelineParams& params, const ConvertHooks& hooks) {
   run_stage(r.report, hooks, "split", [&](Json& stats) {
     Json rounds = Json::array();
-    PolyMesh best_mesh = r.mesh;
-    CheckResult best_check = r.check;
-    VertexCuts best_cuts = st.cuts;
+    // The best mesh so far is r.mesh itself (best_is_current) or, when later
+    // rounds did worse, kept apart: it is moved aside, never copied.
+    PolyMesh best_mesh;
+    CheckResult best_check;
+    VertexCuts best_cuts;
+    bool best_is_current = true;
+    std::size_t best_invalid = r.check.invalid_cells;
     int best_round = 0;
     for (int k = 0; k < params.split.max_rounds && r.check.invalid_cells > 0; ++k) {
       throw_if_interrupted();
       if (!escalate(st, r.primal, r.mesh, r.check)) break;
-      rounds.push(split_round(r, st, params));
-      if (r.check.invalid_cells < best_check.invalid_cells) {
-        best_mesh = r.mesh;
-        best_check = r.check;
-        best_cuts = st.cuts;
+      PolyMesh old = std::move(r.mesh);
+      CheckResult old_check = std::move(r.check);
+      VertexCuts old_cuts = std::move(st.cuts);
+      rounds.push(split_round(r, old, old_check, st, params));
+      if (r.check.invalid_cells < best_invalid) {
+        best_is_current = true;
+        best_invalid = r.check.invalid_cells;
         best_round = k + 1;
+        best_mesh = PolyMesh{};
+        best_check = CheckResult{};
+        best_cuts = VertexCuts{};
+      } else if (best_is_current) {
+        best_is_current = false;
+        best_mesh = std::move(old);
+        best_check = std::move(old_check);
+        best_cuts = std::move(old_cuts);
       }
     }
-    r.mesh = std::move(best_mesh);
-    r.check = std::move(best_check);
-    st.cuts = std::move(best_cuts);
+    if (!best_is_current) {
+      r.mesh = std::move(best_mesh);
+      r.check = std::move(best_check);
+      st.cuts = std::move(best_cuts);
+    }
     stats = Json::object();
     if (best_round > 0 && params.optim.method != OptimParams::Method::None) {
       const std::vector<char> seed = split_region(r.primal, st.cuts, r.mesh);
@@ -201,8 +222,10 @@ void run_split(ConvertResult& r, SplitState& st, const PipelineParams& params, c
     stats.set("cells_split", split_causes(r, st));
     return 0;
   });
+  // r.check holds the verdicts of r.mesh as it is (the kept round's, or those
+  // after the re-optimisation): only the validation is still to run.
   r.check = run_stage(r.report, hooks, "check_split", [&](Json& stats) {
-    CheckResult c = check_mesh(r.mesh, &r.primal);
+    CheckResult c = check_with_known_verdicts(r.mesh, &r.primal, std::move(r.check));
     stats = c.to_json();
     stats.set("invalid_after", c.invalid_cells);
     return c;
@@ -225,8 +248,11 @@ void require_valid(const ConvertResult& r) {
   throw InputError(r.primal.source(), "", what);
 }
 
-// The stages from classify to the final check, appended to r.report.
-void run_pipeline(ConvertResult& r, const TetSoup& soup, const PipelineParams& params, const ConvertHooks& hooks) {
+// The stages from classify to the final check, appended to r.report. A soup
+// the caller owns (`release`, may be null) is freed once classified: it is
+// not needed after, and the split rounds are the memory peak.
+void run_pipeline(ConvertResult& r, const TetSoup& soup, const PipelineParams& params, const ConvertHooks& hooks,
+                  TetSoup* release = nullptr) {
   ConvertReport& rep = r.report;
   r.ignored = soup.ignored;
   r.warnings = soup.warnings;
@@ -236,6 +262,7 @@ void run_pipeline(ConvertResult& r, const TetSoup& soup, const PipelineParams& p
     stats = st.to_json();
     return m;
   });
+  if (release) *release = TetSoup{};
   if (params.tetopt.enabled)
     run_stage(rep, hooks, "optimize_tets", [&](Json& stats) { stats = optimize_tets(r.primal, params.tetopt).to_json(); return 0; });
   // What the classification completed (an incomplete given classification).
@@ -258,9 +285,9 @@ void run_pipeline(ConvertResult& r, const TetSoup& soup, const PipelineParams& p
   r.mesh = run_dual_stages(r, params, hooks, st.free_edge.empty() ? nullptr : &st.free_edge);
   const bool optimise = params.optim.method != OptimParams::Method::None;
   // Validation is topological and the optimiser moves points only: it runs
-  // once, on the mesh that is returned.
+  // once, on the mesh that is returned (with the split, by check_split).
   r.check = run_stage(rep, hooks, "check", [&](Json& stats) {
-    CheckResult c = check_mesh(r.mesh, &r.primal, !optimise);
+    CheckResult c = check_mesh(r.mesh, &r.primal, !optimise && !params.split.enabled);
     stats = c.to_json();
     return c;
   });
@@ -320,13 +347,13 @@ ConvertResult convert_file(const std::string& in, const std::string& out, PolyFo
                       options.foam.force, format == PolyFormat::Vtu ? ".vtu" : "");
   const Stopwatch clock;
   ConvertResult r;
-  const TetSoup soup = run_stage(r.report, hooks, "read", [&](Json& stats) {
+  TetSoup soup = run_stage(r.report, hooks, "read", [&](Json& stats) {
     TetSoup s = read_tet_mesh(in);
     stats = Json::object();
     stats.set("path", in);
     return s;
   });
-  run_pipeline(r, soup, params, hooks);
+  run_pipeline(r, soup, params, hooks, &soup);
   r.written = run_stage(r.report, hooks, "write", [&](Json& stats) {
     Json w = write_result(r, out, format, options);
     stats = w;

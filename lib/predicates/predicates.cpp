@@ -66,6 +66,12 @@ PredicateCounters& predicate_counters() {
   return c;
 }
 
+namespace {
+thread_local std::uint64_t t_star_exact = 0;
+}  // namespace
+
+std::uint64_t star_exact_this_thread() { return t_star_exact; }
+
 namespace detail {
 Sign orient3d_exact(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
   // CGAL's orientation(p,q,r,s) is the sign of det[q-p, r-p, s-p] (filtered, exact).
@@ -283,6 +289,7 @@ Sign decomposition_tet_sign(const Point3& a, const Point3& b, std::span<const Po
     if (det < -bound) return Sign::Positive;
   }
   cnt.star_exact.fetch_add(1, std::memory_order_relaxed);
+  ++t_star_exact;
   return flip(to_sign(static_cast<int>(CGAL::sign(star_det<CGAL::Mpzf>(a, b, face, cell)))));
 }
 

@@ -87,6 +87,10 @@ struct PredicateCounters {
   void reset() { star_exact = circ_exact = 0; }
 };
 PredicateCounters& predicate_counters();
+// The star_exact fallbacks of the calling thread alone (never reset): a caller
+// that evaluates one cell at a time on a thread reads the difference around
+// it to learn that cell's count (split/recheck.h carries it with the verdict).
+std::uint64_t star_exact_this_thread();
 
 }  // namespace polydual
 

@@ -122,6 +122,21 @@ std::vector<CellVerdict> star_shaped_verdicts(const PolyMesh& mesh) {
   return out;
 }
 
+void star_shaped_verdicts_of(const PolyMesh& mesh, std::span<const std::uint32_t> cells, std::span<CellVerdict> out,
+                             std::span<std::uint32_t> exact) {
+  tbb::enumerable_thread_specific<MeshScratch> scratch;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells.size(), 64), [&](const auto& r) {
+    MeshScratch& s = scratch.local();
+    if (s.seen.empty()) s.seen.assign(mesh.num_points(), 0);
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const std::uint32_t c = cells[i];
+      const std::uint64_t e0 = star_exact_this_thread();
+      out[c] = verdict_from_mesh(mesh, c, s);
+      if (!exact.empty()) exact[c] = std::uint32_t(star_exact_this_thread() - e0);
+    }
+  });
+}
+
 std::size_t count_invalid_cells(const MeshStencil& s, std::span<const Point3> points) {
   return tbb::parallel_reduce(
       tbb::blocked_range<std::size_t>(0, s.num_cells(), 256), std::size_t{0},

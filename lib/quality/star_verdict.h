@@ -20,6 +20,12 @@ struct CellVerdict {
 CellVerdict star_shaped_verdict(const PolyMesh& mesh, CellId c);
 // All cells (TBB parallel, deterministic: each entry depends on its cell only).
 std::vector<CellVerdict> star_shaped_verdicts(const PolyMesh& mesh);
+// The verdicts of the listed cells only, into out[c] (out has one entry per
+// cell of mesh; the others are left alone), and each listed cell's number of
+// exact fallbacks into exact[c] (the same size; empty: not recorded). TBB
+// parallel; every entry depends on its cell only.
+void star_shaped_verdicts_of(const PolyMesh& mesh, std::span<const std::uint32_t> cells, std::span<CellVerdict> out,
+                             std::span<std::uint32_t> exact);
 
 // The same test on a precomputed stencil with explicit coordinates (the
 // optimisers move points without rebuilding the mesh). With stop_at_first_bad the

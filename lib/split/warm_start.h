@@ -16,7 +16,12 @@ namespace polydual {
 // the number of points moved. Both meshes must carry point_origin (else 0).
 // Points pinned by a whole-cut vertex of `cuts` (dual/cut_topology.h) keep
 // their barycentric positions.
-std::size_t warm_start(PolyMesh& fresh, const PolyMesh& old, const ClassifiedTetMesh& m, const VertexCuts& cuts);
+// from_old (may be null): per point of `fresh`, the point of `old` made from
+// the same origin when that origin names exactly one point in each mesh
+// (pinned or not), else invalid: a one-to-one map between the two meshes'
+// points (split/recheck.h compares cells through it).
+std::size_t warm_start(PolyMesh& fresh, const PolyMesh& old, const ClassifiedTetMesh& m, const VertexCuts& cuts,
+                       std::vector<PointId>* from_old = nullptr);
 
 // cell_origin of a dual built with `cuts`: for each cell, the cell of the dual
 // without cuts that holds the same tets of the same primal vertex (each cut
