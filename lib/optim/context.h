@@ -31,8 +31,9 @@ struct Context {
   // corners (cell_energy_gradient), at the positions of the last refresh.
   std::vector<Vec3> grad_R, grad_F;
   double omega = 1.0;                        // the local scheme's relaxation in the current sweep
-  OptimParams::Derivatives derivatives = OptimParams::Derivatives::Analytic;  // and its model
-  double full_model_above = 0;               // Corrected: points of cells above this quality use Analytic
+  // Corrected: the points of cells above this quality (at the last record) use
+  // the full analytic model; -infinity while untangling (every point).
+  double full_model_above = 0;
 
   Context(PolyMesh& m, const ClassifiedTetMesh* primal, const OptimParams& p);
   double seconds() const;

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <limits>
 
 #include "optim/context.h"
 #include "optim/lagged_objective.h"
@@ -141,10 +142,11 @@ class VertexNewton {
   // recover poorly shaped cells (on a mesh just untangled its max quality
   // oscillates), while the full model does; such points are few.
   OptimParams::Derivatives model_of(std::span<const std::uint32_t> cells) const {
-    if (ctx_.derivatives != OptimParams::Derivatives::Corrected) return ctx_.derivatives;
+    const OptimParams::Derivatives d = ctx_.params.derivatives;
+    if (d != OptimParams::Derivatives::Corrected) return d;
     for (std::uint32_t c : cells)
       if (!(ctx_.cell_quality[c] <= ctx_.full_model_above)) return OptimParams::Derivatives::Analytic;
-    return ctx_.derivatives;
+    return d;
   }
 
   bool keeps_valid(std::span<const std::uint32_t> cells) {
@@ -462,10 +464,8 @@ void run_local(Context& ctx) {
     // corrected lagged one (around a tangled cell the centres' motion is what
     // decides the regularised volumes; the sweeps visit few points).
     ctx.omega = untangling ? 1.0 : prm.relaxation;
-    ctx.derivatives = untangling && prm.derivatives == OptimParams::Derivatives::Corrected
-                          ? OptimParams::Derivatives::Analytic
-                          : prm.derivatives;
-    ctx.full_model_above = kFullModelRatio * ctx.last_stats.mean;
+    ctx.full_model_above = untangling ? -std::numeric_limits<double>::infinity()
+                                      : kFullModelRatio * ctx.last_stats.mean;
     // Untangling: rings grow by one cell layer per sweep (changes of the
     // previous sweep only); smoothing: changes of this or the previous sweep.
     const int since = sweep - 1;
