@@ -106,10 +106,10 @@ TEST(CliOptions, HelpListsEveryOptionWithItsDefault) {
                    "--collapse-tol X", "(default 0.001)", "--optimize none|untangle|local|global", "(default local)",
                    "--metric q1|q2", "(default q1)", "--derivatives corrected|analytic|lagged|fd|exact", "(default corrected)",
                    "--max-iter N", "(default 20)", "--threads N", "--json"}},
-      {"generate", {"--tets N", "(default 10000)", "-o OUT"}},
+      {"generate", {"--tets N", "(default 10000)", "-o OUT", "--threads N", "--quiet"}},
       {"demo", {"--tets N", "(default 20000)", "--out DIR", "(default polydual-demo)", "--domains LIST"}},
-      {"info", {"--feature-angle DEG", "--json"}},
-      {"check", {"--json", "--threads N"}},
+      {"info", {"--feature-angle DEG", "--json", "--threads N", "--quiet"}},
+      {"check", {"--json", "--threads N", "--quiet"}},
       {"optimize", {"--primal MESH", "--optimize", "--max-iter N"}},
   };
   for (const Expect& e : cases) {
@@ -226,6 +226,32 @@ TEST(CliOptions, ThreadsDoNotChangeOutputs) {
                   " --max-iter 3 --threads " + t).code, 0);
   EXPECT_EQ(slurp(d / "t1.vtu"), slurp(d / "t2.vtu"));
   EXPECT_EQ(slurp(d / "t1.vtu"), slurp(d / "t3.vtu"));
+}
+
+// Issue 14: `--threads N` and `--quiet` on every command; the outputs do not
+// depend on the thread count, and --quiet leaves stderr empty.
+TEST(CliOptions, EveryCommandTakesThreadsAndQuiet) {
+  const fs::path d = scratch_root();
+  const std::string vtu1 = (d / "g1.vtu").string(), vtu2 = (d / "g2.vtu").string();
+  CmdResult g1 = run("generate fichera --tets 1500 -o " + vtu1 + " --threads 1 --quiet");
+  CmdResult g2 = run("generate fichera --tets 1500 -o " + vtu2 + " --threads 2");
+  ASSERT_EQ(g1.code, 0) << g1.err;
+  ASSERT_EQ(g2.code, 0) << g2.err;
+  EXPECT_EQ(g1.err, "");
+  EXPECT_THAT(g2.err, HasSubstr("polydual: wrote"));  // the line --quiet removes
+  EXPECT_EQ(slurp(vtu1), slurp(vtu2));
+  const std::string in = meshes().msh.string(), out = (d / "q.vtu").string();
+  ASSERT_EQ(run("convert " + in + " -o " + out + " --optimize none --quiet").code, 0);
+  const std::vector<std::string> commands = {"info " + in, "check " + out, "convert " + in + " -o " + out +
+                                             " --optimize none --force", "optimize " + out + " --primal " + in +
+                                             " -o " + (d / "q2.vtu").string() + " --max-iter 1"};
+  for (const std::string& c : commands) {
+    CmdResult one = run(c + " --json --quiet --threads 1"), two = run(c + " --json --quiet --threads 2");
+    ASSERT_EQ(one.code, 0) << c << ": " << one.err;
+    ASSERT_EQ(two.code, 0) << c << ": " << two.err;
+    EXPECT_EQ(one.err, "") << c;
+    EXPECT_EQ(jq(one.out, "d.get('cells', d.get('tets'))"), jq(two.out, "d.get('cells', d.get('tets'))")) << c;
+  }
 }
 
 TEST(CliOptions, JsonOrText) {

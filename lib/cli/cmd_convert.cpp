@@ -22,11 +22,11 @@ const CommandSpec kConvert{
      "--derivatives", "--relaxation", "--tol", "--polish-sweeps", "--polish-share", "--max-iter", "--threads", "--json", "--quiet"}};
 
 const CommandSpec kCheck{
-    "check", "check FILE.vtu [--json]",
+    "check", "check FILE.vtu [--json] [--threads N] [--quiet]",
     "Re-reads a polyhedral VTU written by polydual and reports the topological\n"
     "validation (closed cells, faces) and the exact star-shaped verdicts.",
     1, 1,
-    {"--threads", "--json"}};
+    {"--threads", "--json", "--quiet"}};
 
 int cmd_convert(const Settings& s) {
   if (s.out.empty()) throw UsageError("convert needs -o OUT");

@@ -15,19 +15,21 @@
 namespace polydual::cli {
 
 const CommandSpec kGenerate{
-    "generate", "generate DOMAIN --tets N -o FILE",
+    "generate", "generate DOMAIN --tets N -o FILE [--threads N] [--quiet]",
     "Generates one of the demo domains (the paper's cube, twomat, fichera, fracture; the\n"
     "fracture network 'network'; the finned box 'fins') with Gmsh,\n"
     "fully classified, deterministic (same N => same mesh). The output format follows\n"
-    "FILE's extension: .msh (Gmsh 4.1, written by Gmsh), .mesh, .node, .vtu.",
+    "FILE's extension: .msh (Gmsh 4.1, written by Gmsh), .mesh, .node, .vtu.\n"
+    "Gmsh meshes serially (its parallel mesher is not deterministic); --threads\n"
+    "bounds polydual's own work (classification, writers).",
     1, 1,
-    {"--tets=10000", "-o"}};
+    {"--tets=10000", "-o", "--threads", "--quiet"}};
 
 const CommandSpec kInfo{
-    "info", "info FILE [--json] [--feature-angle DEG]",
+    "info", "info FILE [--json] [--feature-angle DEG] [--threads N] [--quiet]",
     "Reads and classifies a tet mesh; prints its size and its geometric model.",
     1, 1,
-    {"--feature-angle", "--json", "--quiet"}};
+    {"--feature-angle", "--threads", "--json", "--quiet"}};
 
 int cmd_generate(const Settings& s) {
   const Domain d = parse_domain(s.positional[0]);
@@ -37,8 +39,9 @@ int cmd_generate(const Settings& s) {
   const auto n = static_cast<std::size_t>(s.tets);
   if (std::filesystem::path(s.out).extension() == ".msh") write_domain_msh(d, n, s.out);
   else write_tet_mesh(generate_domain(d, n), s.out);
-  std::fprintf(stderr, "polydual: wrote %s (%s, target %lld tets) in %.2f s\n", s.out.c_str(),
-               domain_name(d).c_str(), s.tets, clock.seconds());
+  if (!s.quiet)
+    std::fprintf(stderr, "polydual: wrote %s (%s, target %lld tets) in %.2f s\n", s.out.c_str(),
+                 domain_name(d).c_str(), s.tets, clock.seconds());
   return 0;
 }
 
