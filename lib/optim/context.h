@@ -23,6 +23,12 @@ struct Context {
   std::chrono::steady_clock::time_point start;
   QualityStats last_stats;                   // of the last record()
   std::vector<double> cell_quality;          // per cell, of the last record()
+  // record() is incremental: per cell the energy of the last record, and the
+  // points' positions then; a cell whose points are all bitwise unchanged
+  // since has the same energy, quality and centre gradients (they are
+  // functions of its own points, V0[c] and the run's fixed parameters).
+  std::vector<double> recorded_energy;
+  std::vector<Point3> recorded_points;
   OptimReport* report = nullptr;
   const ProgressFn* progress = nullptr;      // called after each record(); may be null
   std::span<const char> seed_cells;          // optimize()'s; empty: every point starts active
@@ -39,11 +45,12 @@ struct Context {
   double seconds() const;
   // Total objective (parallel per cell, serial sum: deterministic).
   double objective(std::span<const Point3> pts) const;
-  // Appends an IterationRecord for the mesh's current state.
+  // Appends an IterationRecord for the mesh's current state; re-evaluates only
+  // the cells with a point moved since the last record.
   void record(int iteration);
-  // Recomputes grad_R and grad_F at the current positions (parallel per cell);
-  // returns the total objective.
-  double refresh_centre_gradients();
+  // Whether the run uses the centre gradients (Corrected derivatives in a
+  // scheme that smooths; untangling always uses the full model).
+  bool uses_centre_gradients() const;
   // cell_quality and (Corrected) the centre gradients of the given cells at the
   // current positions: the cells whose points a partial sweep moved.
   void refresh_cells(std::span<const std::uint32_t> cells);

@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <cstdio>
+#include <cstring>
 #include <string>
 
 #include "core/error.h"
@@ -52,25 +53,35 @@ double Context::objective(std::span<const Point3> pts) const {
   return sum;
 }
 
-double Context::refresh_centre_gradients() {
-  const std::size_t nc = stencil.num_cells();
-  grad_R.resize(nc);
-  grad_F.resize(stencil.cell_loop_off.back());
-  std::vector<double> e(nc);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nc, 64), [&](const auto& r) {
-    for (std::size_t c = r.begin(); c != r.end(); ++c) {
-      const auto cell = static_cast<std::uint32_t>(c);
-      e[c] = cell_energy_gradient(stencil, cell, params.metric, mesh.points, V0[c], params.c, nullptr, &grad_R[c],
-                                  grad_F.data() + stencil.cell_loop_off[c]);
-    }
-  });
-  double sum = 0;
-  for (double x : e) sum += x;  // serial, in cell order: deterministic
-  return sum;
+bool Context::uses_centre_gradients() const {
+  return params.derivatives == OptimParams::Derivatives::Corrected && params.method != OptimParams::Method::Untangle;
 }
 
+namespace {
+bool same_bits(const Point3& a, const Point3& b) { return std::memcmp(&a, &b, sizeof(Point3)) == 0; }
+
+// The cells to re-evaluate at a record: every cell at the first, then the
+// cells of the points whose coordinates changed (bitwise) since the last.
+std::vector<std::uint32_t> changed_cells(const Context& ctx) {
+  const std::size_t nc = ctx.stencil.num_cells();
+  std::vector<std::uint32_t> cells;
+  if (ctx.recorded_points.size() != ctx.mesh.points.size()) {
+    cells.resize(nc);
+    for (std::size_t c = 0; c < nc; ++c) cells[c] = static_cast<std::uint32_t>(c);
+    return cells;
+  }
+  std::vector<char> dirty(nc, 0);
+  for (std::size_t p = 0; p < ctx.mesh.points.size(); ++p)
+    if (!same_bits(ctx.mesh.points[p], ctx.recorded_points[p]))
+      for (std::uint32_t c : ctx.stencil.cells_of(PointId(p))) dirty[c] = 1;
+  for (std::size_t c = 0; c < nc; ++c)
+    if (dirty[c]) cells.push_back(static_cast<std::uint32_t>(c));
+  return cells;
+}
+}  // namespace
+
 void Context::refresh_cells(std::span<const std::uint32_t> cells) {
-  const bool corrected = params.derivatives == OptimParams::Derivatives::Corrected;
+  const bool corrected = uses_centre_gradients();
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells.size(), 64), [&](const auto& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
       const std::uint32_t c = cells[i];
@@ -86,16 +97,37 @@ void Context::record(int iteration) {
   throw_if_interrupted();  // between iterations: Ctrl-C stops a long run promptly
   IterationRecord r;
   r.iteration = iteration;
-  // Corrected derivatives: the centre gradients come from the same pass over
-  // the corners as the objective, so the next sweep starts with them current.
-  r.objective = params.derivatives == OptimParams::Derivatives::Corrected ? refresh_centre_gradients()
-                                                                           : objective(mesh.points);
+  // The cells whose points moved since the last record get their energy and
+  // quality (and, with the centre gradients, grad_R and grad_F: the next
+  // sweep's corrected model needs them current) from one pass over their
+  // corners; the others keep theirs. The sums are serial in cell order, so
+  // the objective is the same as a full pass's, bit for bit.
+  const std::vector<std::uint32_t> cells = changed_cells(*this);
+  const std::size_t nc = stencil.num_cells();
+  const bool grads = uses_centre_gradients();
+  recorded_energy.resize(nc);
+  cell_quality.resize(nc);
+  if (grads) {
+    grad_R.resize(nc);
+    grad_F.resize(stencil.cell_loop_off.back());
+  }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells.size(), 64), [&](const auto& rg) {
+    for (std::size_t i = rg.begin(); i != rg.end(); ++i) {
+      const std::uint32_t c = cells[i];
+      recorded_energy[c] = grads ? cell_energy_gradient(stencil, c, params.metric, mesh.points, V0[c], params.c, nullptr,
+                                                    &grad_R[c], grad_F.data() + stencil.cell_loop_off[c])
+                             : cell_energy(stencil, c, params.metric, mesh.points, V0[c], params.c);
+      cell_quality[c] = polydual::cell_quality(stencil, c, params.metric, mesh.points);
+    }
+  });
+  recorded_points.assign(mesh.points.begin(), mesh.points.end());
+  r.objective = 0;
+  for (double e : recorded_energy) r.objective += e;
   // cell_valid holds the exact star verdict of every cell at all times (both
   // schemes re-test every cell whose points they move), so counting it is the
   // exact count without a second pass of the star test.
   r.invalid = 0;
   for (std::uint8_t v : cell_valid) r.invalid += v == 0;
-  cell_quality = cell_qualities(stencil, params.metric, mesh.points);
   last_stats = quality_stats(cell_quality, params.metric);
   r.min_quality = last_stats.min;
   r.mean_quality = last_stats.mean;
