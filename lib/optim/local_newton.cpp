@@ -426,6 +426,27 @@ void polish_worst(Context& ctx, const ColourClasses (&passes)[2], tbb::enumerabl
   if (k > 0) record_sweep(ctx, sweep + k, counts);
 }
 
+// near[c]: cell c is within kUntangleReach point-sharing layers of a cell
+// that is invalid now. The untangling rings grow only there, so that once few
+// cells are left the sweeps visit their surroundings, not every region that
+// moved before.
+constexpr int kUntangleReach = 2;
+void mark_near_invalid(const Context& ctx, std::vector<char>& near) {
+  const std::size_t nc = ctx.mesh.num_cells();
+  near.assign(nc, 0);
+  std::vector<std::uint32_t> front, next;
+  for (std::size_t c = 0; c < nc; ++c)
+    if (!ctx.cell_valid[c]) { near[c] = 1; front.push_back(static_cast<std::uint32_t>(c)); }
+  for (int layer = 0; layer < kUntangleReach; ++layer) {
+    next.clear();
+    for (std::uint32_t c : front)
+      for (PointId q : ctx.stencil.points_of(c))
+        for (std::uint32_t d : ctx.stencil.cells_of(q))
+          if (!near[d]) { near[d] = 1; next.push_back(d); }
+    front.swap(next);
+  }
+}
+
 }  // namespace
 
 void run_local(Context& ctx) {
@@ -457,6 +478,7 @@ void run_local(Context& ctx) {
       if (ctx.seed_cells[c]) last_change[c] = 0;
   bool full_sweep = untangle_left == 0 && !seeded;
   double f_prev = ctx.report->iterations.back().objective;
+  std::vector<char> near_invalid;
   int sweep = 1;
   for (; sweep <= prm.max_iter; ++sweep) {
     const bool untangling = untangle_left > 0;
@@ -469,10 +491,12 @@ void run_local(Context& ctx) {
     // Untangling: rings grow by one cell layer per sweep (changes of the
     // previous sweep only); smoothing: changes of this or the previous sweep.
     const int since = sweep - 1;
+    if (untangling) mark_near_invalid(ctx, near_invalid);
     auto active = [&](PointId p) {
       bool a = full_sweep;
       for (std::uint32_t c : ctx.stencil.cells_of(p))
-        a = a || !ctx.cell_valid[c] || (last_change[c] >= since && (!untangling || last_change[c] < sweep));
+        a = a || !ctx.cell_valid[c] ||
+            (last_change[c] >= since && (!untangling || (last_change[c] < sweep && near_invalid[c])));
       return a;
     };
     IterationRecord counts;
