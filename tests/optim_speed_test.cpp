@@ -266,6 +266,31 @@ TEST(OptimSpeed, IncrementalRecordEqualsAFullPass) {
   }
 }
 
+// A cell whose points are all fixed cannot be untangled: untangling stops
+// kUntangleStall (4) sweeps after the invalid count last dropped instead of
+// spending max_iter sweeps on it.
+TEST(OptimSpeed, UntanglingStopsWhenTheInvalidCountStalls) {
+  PolyMesh m = jittered_block(4, 0.1, 9);
+  const MeshStencil s0 = build_stencil(m);
+  const std::uint32_t stuck = 21;  // an interior cell of the 4x4x4 block
+  for (PointId q : s0.points_of(stuck)) m.point_class[q.idx].dim = 0;  // fixed
+  const PointId a = s0.points_of(stuck)[0];
+  Point3 far = m.points[a.idx];
+  for (PointId q : s0.points_of(stuck)) far = far + 0.45 * (m.points[q.idx] - m.points[a.idx]);
+  m.points[a.idx] = far;  // pushed deep into its own cell: the cell is not star-shaped
+  ASSERT_FALSE(valid_flags(m)[stuck]);
+  OptimParams p;
+  p.method = OptimParams::Method::Untangle;
+  p.max_iter = 20;
+  const OptimReport r = optimize(m, nullptr, p);
+  EXPECT_GT(r.invalid_after, 0);
+  std::size_t last_drop = 0;
+  for (std::size_t i = 1; i < r.iterations.size(); ++i)
+    if (r.iterations[i].invalid < r.iterations[i - 1].invalid) last_drop = i;
+  EXPECT_EQ(r.iterations.size() - 1, last_drop + 4);
+  EXPECT_LT(r.iterations.size() - 1, 20u);
+}
+
 TEST(OptimSpeed, ParsersKnowTheNewNames) {
   EXPECT_EQ(parse_derivatives("corrected"), OptimParams::Derivatives::Corrected);
   EXPECT_STREQ(derivatives_name(OptimParams::Derivatives::Corrected), "corrected");

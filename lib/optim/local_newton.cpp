@@ -431,6 +431,10 @@ void polish_worst(Context& ctx, const ColourClasses (&passes)[2], tbb::enumerabl
 // cells are left the sweeps visit their surroundings, not every region that
 // moved before.
 constexpr int kUntangleReach = 2;
+// Untangling stops after kUntangleStall sweeps without fewer invalid cells
+// (a cell wrapped around a sheet's free edge cannot be untangled by moving
+// points: the split cuts it, see lib/split).
+constexpr int kUntangleStall = 4;
 void mark_near_invalid(const Context& ctx, std::vector<char>& near) {
   const std::size_t nc = ctx.mesh.num_cells();
   near.assign(nc, 0);
@@ -479,6 +483,8 @@ void run_local(Context& ctx) {
   bool full_sweep = untangle_left == 0 && !seeded;
   double f_prev = ctx.report->iterations.back().objective;
   std::vector<char> near_invalid;
+  std::size_t fewest_invalid = ctx.report->iterations.back().invalid;
+  int stalled = 0;  // untangling sweeps since the invalid count last dropped
   int sweep = 1;
   for (; sweep <= prm.max_iter; ++sweep) {
     const bool untangling = untangle_left > 0;
@@ -505,7 +511,13 @@ void run_local(Context& ctx) {
     if (untangling) {
       // The objective test is meaningless while only a few points move.
       --untangle_left;
-      if (rec.invalid == 0 || rec.updates == 0) untangle_left = 0;
+      if (rec.invalid < fewest_invalid) {
+        fewest_invalid = rec.invalid;
+        stalled = 0;
+      } else {
+        ++stalled;
+      }
+      if (rec.invalid == 0 || rec.updates == 0 || stalled >= kUntangleStall) untangle_left = 0;
       if (untangle_only && untangle_left == 0) return;
       full_sweep = untangle_left == 0 && !seeded;
       f_prev = rec.objective;
