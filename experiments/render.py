@@ -22,8 +22,8 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 DOMAINS = ["cube", "twomat", "fichera", "fracture", "network", "fins"]
-PAPER_FIG = {"cube": "Fig. 7", "twomat": "Fig. 8", "fichera": "Fig. 9", "fracture": "Fig. 10",
-             "network": "none, new", "fins": "none, new"}
+PAPER_FIG = {"cube": "paper Fig. 7", "twomat": "paper Fig. 8", "fichera": "paper Fig. 9",
+             "fracture": "paper Fig. 10", "network": "not in the paper", "fins": "not in the paper"}
 # Preferred optimised variant for the figures: the paper's scheme if it ran.
 FIGURE_VARIANTS = ["local_q1_fd", "global_q1"]
 TETOPT_FIGURE_VARIANTS = ["tetopt_local_q1_fd", "tetopt_global_q1"]
@@ -76,7 +76,9 @@ def deriv_label(r):
 
 
 def converts(recs):
-    rs = [r for r in recs if r.get("kind") == "convert"]
+    """The convert records of the tables ("dual", the unsplit dual, is the
+    figures' panel (b) only)."""
+    rs = [r for r in recs if r.get("kind") == "convert" and r["variant"] != "dual"]
     return sorted(rs, key=lambda r: (r["target_tets"], dom_key(r["domain"]),
                                      VARIANT_ORDER.index(r["variant"])
                                      if r["variant"] in VARIANT_ORDER else 99))
@@ -476,8 +478,12 @@ def figures(out, recs, size=None):
         return made
     n = size or sizes[0]
     for d in DOMAINS:
-        none = one(recs, kind="convert", domain=d, target_tets=n, variant="none")
-        if not none or not none.get("ok"):
+        # Panel (b): the dual as Algorithm 1 builds it ("dual": --no-split);
+        # older runs without that record fall back to "none" (split).
+        none = next((r for v in ("dual", "none")
+                     for r in [one(recs, kind="convert", domain=d, target_tets=n, variant=v)]
+                     if r and r.get("ok")), None)
+        if not none:
             continue
         opt = next((r for v in FIGURE_VARIANTS
                     for r in [one(recs, kind="convert", domain=d, target_tets=n, variant=v)]
@@ -510,7 +516,7 @@ def figures(out, recs, size=None):
             panels.append(p); titles.append("(d) full optimised mesh")
         f = os.path.join(figdir, f"fig_{d}.png")
         compose(panels, titles, f,
-                f"{d} (paper {PAPER_FIG[d]}), {tets.GetNumberOfCells()} tets, "
+                f"{d} ({PAPER_FIG[d]}), {tets.GetNumberOfCells()} tets, "
                 f"{tot} dual cells; green = star-shaped, red = invalid (exact test)")
         made += panels + [f]
         print(f"figure {f}", flush=True)

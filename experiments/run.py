@@ -42,7 +42,8 @@ OPENFOAM_ENV = {"WM_PROJECT_DIR": "/usr/share/openfoam"}
 # fewer invalid dual cells than the raw mesh, the paper's claim, where Gmsh's
 # stronger pass and the moves alone gave more).
 # scope: "all" sizes; "local" only up to --local-max-tets (the local Newton
-# scheme is the slow one); "compare" only up to --compare-max-tets.
+# scheme is the slow one); "compare" only up to --compare-max-tets; "figure"
+# only at the smallest size (the one the figures show).
 VARIANTS = {
     "none":            ("raw", "none", "q1", "fd", "all"),
     "local_q1_fd":     ("raw", "local", "q1", "fd", "local"),    # the paper's scheme
@@ -53,11 +54,16 @@ VARIANTS = {
     "tetopt_none":     ("tetopt", "none", "q1", "fd", "all"),
     "tetopt_local_q1_fd": ("tetopt", "local", "q1", "fd", "compare"),
     "tetopt_global_q1": ("tetopt", "global", "q1", "exact", "compare"),
+    # The figures' panel (b): the dual exactly as Algorithm 1 builds it (no
+    # split, which "none" runs by default and which makes every cell valid).
+    "dual":            ("raw", "none", "q1", "fd", "figure"),
 }
+# Flags a variant adds to its convert command.
+EXTRA_FLAGS = {"dual": ["--no-split"]}
 # The local variants reproduce the paper's scheme: its damped Newton (no
 # over-relaxation, no polish) and its tolerance, not polydual's faster default.
 PAPER_LOCAL = ["--relaxation", "1", "--polish-sweeps", "0", "--tol", "1e-3"]
-SMOKE_VARIANTS = ["none", "global_q1", "local_q1_fd", "tetopt_none", "tetopt_global_q1"]
+SMOKE_VARIANTS = ["none", "global_q1", "local_q1_fd", "tetopt_none", "tetopt_global_q1", "dual"]
 
 
 class Progress:
@@ -158,6 +164,7 @@ class Harness:
         vtu = os.path.join(d, f"{variant}.vtu")
         cmd = [self.polydual, "convert", src, "-o", vtu, "--json", "--optimize", opt,
                "--metric", metric, "--derivatives", deriv] + (PAPER_LOCAL if opt == "local" else [])
+        cmd += EXTRA_FLAGS.get(variant, [])
         if inp == "tetopt":
             cmd += ["--optimize-tets"]
         if self.a.max_iter:
@@ -279,6 +286,8 @@ def in_scope(a, variant, n, peer=False):
     scope = VARIANTS[variant][4]
     if scope == "local":
         return n <= a.local_max_tets
+    if scope == "figure":
+        return not peer and n == min(a.sizes)
     if scope == "compare" or (peer and variant != "none"):
         return n <= a.compare_max_tets
     return True
