@@ -51,8 +51,9 @@ struct Context {
   // Whether the run uses the centre gradients (Corrected derivatives in a
   // scheme that smooths; untangling always uses the full model).
   bool uses_centre_gradients() const;
-  // cell_quality and (Corrected) the centre gradients of the given cells at the
-  // current positions: the cells whose points a partial sweep moved.
+  // Energy, quality and (uses_centre_gradients) the centre gradients of the
+  // given cells at the current positions: record()'s changed cells, and the
+  // cells whose points a polish sweep moved.
   void refresh_cells(std::span<const std::uint32_t> cells);
   // Tangent basis of p (dof(p) orthonormal vectors).
   void basis(PointId p, Vec3 B[3]) const;

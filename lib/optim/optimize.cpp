@@ -81,14 +81,14 @@ std::vector<std::uint32_t> changed_cells(const Context& ctx) {
 }  // namespace
 
 void Context::refresh_cells(std::span<const std::uint32_t> cells) {
-  const bool corrected = uses_centre_gradients();
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells.size(), 64), [&](const auto& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+  const bool grads = uses_centre_gradients();
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells.size(), 64), [&](const auto& rg) {
+    for (std::size_t i = rg.begin(); i != rg.end(); ++i) {
       const std::uint32_t c = cells[i];
+      recorded_energy[c] = grads ? cell_energy_gradient(stencil, c, params.metric, mesh.points, V0[c], params.c, nullptr,
+                                                        &grad_R[c], grad_F.data() + stencil.cell_loop_off[c])
+                                 : cell_energy(stencil, c, params.metric, mesh.points, V0[c], params.c);
       cell_quality[c] = polydual::cell_quality(stencil, c, params.metric, mesh.points);
-      if (corrected)
-        cell_energy_gradient(stencil, c, params.metric, mesh.points, V0[c], params.c, nullptr, &grad_R[c],
-                             grad_F.data() + stencil.cell_loop_off[c]);
     }
   });
 }
@@ -102,24 +102,14 @@ void Context::record(int iteration) {
   // sweep's corrected model needs them current) from one pass over their
   // corners; the others keep theirs. The sums are serial in cell order, so
   // the objective is the same as a full pass's, bit for bit.
-  const std::vector<std::uint32_t> cells = changed_cells(*this);
   const std::size_t nc = stencil.num_cells();
-  const bool grads = uses_centre_gradients();
   recorded_energy.resize(nc);
   cell_quality.resize(nc);
-  if (grads) {
+  if (uses_centre_gradients()) {
     grad_R.resize(nc);
     grad_F.resize(stencil.cell_loop_off.back());
   }
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells.size(), 64), [&](const auto& rg) {
-    for (std::size_t i = rg.begin(); i != rg.end(); ++i) {
-      const std::uint32_t c = cells[i];
-      recorded_energy[c] = grads ? cell_energy_gradient(stencil, c, params.metric, mesh.points, V0[c], params.c, nullptr,
-                                                    &grad_R[c], grad_F.data() + stencil.cell_loop_off[c])
-                             : cell_energy(stencil, c, params.metric, mesh.points, V0[c], params.c);
-      cell_quality[c] = polydual::cell_quality(stencil, c, params.metric, mesh.points);
-    }
-  });
+  refresh_cells(changed_cells(*this));
   recorded_points.assign(mesh.points.begin(), mesh.points.end());
   r.objective = 0;
   for (double e : recorded_energy) r.objective += e;
