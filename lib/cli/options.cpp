@@ -105,6 +105,11 @@ const std::vector<OptionDef> kTable = {
      "local scheme: the polish works on the cells whose quality exceeds mean + S x (worst - mean)",
      [](const Settings& d) { return num(d.params.optim.polish_share); },
      [](Settings& s, const std::string& v) { s.params.optim.polish_share = std::stod(v); }},
+    {"--settle-move", K::Real, "X", 0, OptimParams::kMaxSettleMove,
+     "local scheme: a point is revisited only while a point of its cells moved by more than X x the local "
+     "length in the last two sweeps (0: while anything around it moved)",
+     [](const Settings& d) { return num(d.params.optim.settle_move); },
+     [](Settings& s, const std::string& v) { s.params.optim.settle_move = std::stod(v); }},
     {"--tol", K::Real, "X", 0, OptimParams::kMaxTol,
      "stop when a sweep lowers the objective by less than X relative",
      [](const Settings& d) {

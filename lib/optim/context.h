@@ -40,6 +40,10 @@ struct Context {
   // Corrected: the points of cells above this quality (at the last record) use
   // the full analytic model; -infinity while untangling (every point).
   double full_model_above = 0;
+  // Corrected, Method::Untangle: the first untangling sweep uses the plain
+  // lagged model (it spares the neighbours of the tangled cells; the later
+  // untangling sweeps, over the few cells left, use the full model).
+  bool lagged_untangling = false;
 
   Context(PolyMesh& m, const ClassifiedTetMesh* primal, const OptimParams& p);
   double seconds() const;

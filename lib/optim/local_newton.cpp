@@ -135,6 +135,10 @@ class VertexNewton {
     return accepted;
   }
 
+  // Whether the last visit used the full analytic model (Corrected runs:
+  // model_of), for the sweep's counts.
+  bool used_full_model() const { return der_ == OptimParams::Derivatives::Analytic; }
+
  private:
   // The sweep's model, except that a point of a cell whose quality (at the last
   // record) is above ctx_.full_model_above gets the full analytic model: the
@@ -144,6 +148,7 @@ class VertexNewton {
   OptimParams::Derivatives model_of(std::span<const std::uint32_t> cells) const {
     const OptimParams::Derivatives d = ctx_.params.derivatives;
     if (d != OptimParams::Derivatives::Corrected) return d;
+    if (ctx_.lagged_untangling) return OptimParams::Derivatives::Lagged;
     for (std::uint32_t c : cells)
       if (!(ctx_.cell_quality[c] <= ctx_.full_model_above)) return OptimParams::Derivatives::Analytic;
     return d;
@@ -327,13 +332,13 @@ ColourClasses colour_points(const Context& ctx, bool surface) {
 template <class Active>
 void sweep_points(Context& ctx, const ColourClasses (&passes)[2], tbb::enumerable_thread_specific<VertexNewton>& solvers,
                   int sweep, std::vector<int>& last_change, const Active& active, IterationRecord& counts) {
-  std::atomic<std::uint64_t> updates{0}, visited{0};
+  std::atomic<std::uint64_t> updates{0}, visited{0}, full{0};
   for (const ColourClasses& cc : passes) {
     for (std::size_t col = 0; col + 1 < cc.colour_off.size(); ++col) {
       const std::uint32_t b = cc.colour_off[col], e = cc.colour_off[col + 1];
       tbb::parallel_for(tbb::blocked_range<std::uint32_t>(b, e, 4), [&](const auto& r) {
         VertexNewton& solver = solvers.local();
-        std::uint64_t n_upd = 0, n_vis = 0;
+        std::uint64_t n_upd = 0, n_vis = 0, n_full = 0;
         for (std::uint32_t a = r.begin(); a != r.end(); ++a) {
           const PointId p(cc.points[a]);
           if (!active(p)) continue;
@@ -341,6 +346,7 @@ void sweep_points(Context& ctx, const ColourClasses (&passes)[2], tbb::enumerabl
           double moved = 0;
           const int n = solver.optimise(p, &moved);
           n_upd += static_cast<std::uint64_t>(n);
+          n_full += solver.used_full_model();
           if (n == 0) continue;
           const auto cells = ctx.stencil.cells_of(p);
           double v0 = 0;
@@ -351,11 +357,13 @@ void sweep_points(Context& ctx, const ColourClasses (&passes)[2], tbb::enumerabl
         }
         updates += n_upd;
         visited += n_vis;
+        full += n_full;
       });
     }
   }
   counts.updates = updates;
   counts.visited = visited;
+  counts.full_model = full;
 }
 
 // Records iteration `sweep` with the visit counts; returns the record.
@@ -365,6 +373,7 @@ IterationRecord& record_sweep(Context& ctx, int sweep, const IterationRecord& co
   IterationRecord& rec = ctx.report->iterations.back();
   rec.visited = counts.visited;
   rec.updates = counts.updates;
+  rec.full_model = counts.full_model;
   return rec;
 }
 
@@ -413,6 +422,7 @@ void polish_worst(Context& ctx, const ColourClasses (&passes)[2], tbb::enumerabl
     sweep_points(ctx, passes, solvers, sweep + ++k, last_change, active, one);
     counts.visited += one.visited;
     counts.updates += one.updates;
+    counts.full_model += one.full_model;
     if (one.updates == 0) break;
     ctx.refresh_cells(region);
     const double w = *std::max_element(ctx.cell_quality.begin(), ctx.cell_quality.end());
@@ -492,6 +502,17 @@ void run_local(Context& ctx) {
     // corrected lagged one (around a tangled cell the centres' motion is what
     // decides the regularised volumes; the sweeps visit few points).
     ctx.omega = untangling ? 1.0 : prm.relaxation;
+    // The first untangling sweep (the points of every invalid cell) on the
+    // plain lagged model: with the centres held, a point of a tangled cell is
+    // not dragged to where the regularised volumes of the tangled cell drop
+    // fastest at any cost to its valid neighbours, as the full model does
+    // (proofs/quality.md §7). The later untangling sweeps, over the few cells
+    // it left, use the full model: it untangles what the lagged one cannot.
+    // Method::Untangle only: before smoothing, the full model's first sweep
+    // costs less in total (the first smoothing sweep repairs its damage on the
+    // cheap model, while from the lagged sweep's milder state more points go
+    // to the full model; 100k: 4-15% slower, bench/README.md).
+    ctx.lagged_untangling = untangle_only && sweep == 1;
     ctx.full_model_above = untangling ? -std::numeric_limits<double>::infinity()
                                       : kFullModelRatio * ctx.last_stats.mean;
     // Untangling: rings grow by one cell layer per sweep (changes of the

@@ -177,6 +177,7 @@ Json IterationRecord::to_json() const {
   j.set("seconds", seconds);
   j.set("visited", static_cast<unsigned long long>(visited));
   j.set("updates", static_cast<unsigned long long>(updates));
+  j.set("full_model", static_cast<unsigned long long>(full_model));
   return j;
 }
 
@@ -208,7 +209,7 @@ void OptimParams::validate() const {
   if (tol != kMethodTol) check_param("OptimParams::tol", "relative objective change", {0, kMaxTol}, tol);
   check_param("OptimParams::c", "eq. 3", {kMinDeltaC, kMaxDeltaC}, c);
   check_param("OptimParams::newton_steps", "steps per visit", {1, double(kMaxNewtonSteps)}, newton_steps);
-  check_param("OptimParams::settle_move", "relative to cbrt(V0)", {0, 1}, settle_move);
+  check_param("OptimParams::settle_move", "relative to cbrt(V0)", {0, kMaxSettleMove}, settle_move);
   check_param("OptimParams::untangle_sweeps", "sweeps", {0, double(kMaxUntangleSweeps)}, untangle_sweeps);
   check_param("OptimParams::max_halvings", "halvings", {0, double(kMaxHalvings)}, max_halvings);
   check_param("OptimParams::polish_sweeps", "sweeps", {0, double(kMaxIterLimit)}, polish_sweeps);

@@ -103,6 +103,7 @@ struct OptimParams {
   static constexpr double kMinDeltaC = 1.0, kMaxDeltaC = 1000.0;  // paper: 10..100
   static constexpr int kMaxNewtonSteps = 100, kMaxUntangleSweeps = 1000, kMaxHalvings = 60;
   static constexpr double kMaxFdStep = 0.1;
+  static constexpr double kMaxSettleMove = 1.0;
 
   // Throws UsageError naming the first field outside its range.
   void validate() const;
@@ -120,6 +121,7 @@ struct IterationRecord {
   double seconds = 0;          // wall time since the start of optimize()
   std::uint64_t visited = 0;   // Local: points visited in this sweep (active set)
   std::uint64_t updates = 0;   // Local: accepted moves in this sweep
+  std::uint64_t full_model = 0;  // Local: visits that used the full analytic model
   Json to_json() const;
 };
 
