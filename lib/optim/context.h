@@ -53,7 +53,7 @@ struct Context {
   // the cells with a point moved since the last record.
   void record(int iteration);
   // Whether the run uses the centre gradients (Corrected derivatives in a
-  // scheme that smooths; untangling always uses the full model).
+  // scheme that smooths; untangling never uses the corrected model).
   bool uses_centre_gradients() const;
   // Energy, quality and (uses_centre_gradients) the centre gradients of the
   // given cells at the current positions: record()'s changed cells, and the
