@@ -45,7 +45,8 @@ struct Context {
   // untangling sweeps, over the few cells left, use the full model).
   bool lagged_untangling = false;
 
-  Context(PolyMesh& m, const ClassifiedTetMesh* primal, const OptimParams& p);
+  // known: the cells' exact star verdicts (empty, or not one per cell: tested here).
+  Context(PolyMesh& m, const ClassifiedTetMesh* primal, const OptimParams& p, std::span<const CellVerdict> known = {});
   double seconds() const;
   // Total objective (parallel per cell, serial sum: deterministic).
   double objective(std::span<const Point3> pts) const;

@@ -17,7 +17,8 @@
 namespace polydual {
 namespace optim_detail {
 
-Context::Context(PolyMesh& m, const ClassifiedTetMesh* primal, const OptimParams& p)
+Context::Context(PolyMesh& m, const ClassifiedTetMesh* primal, const OptimParams& p,
+                 std::span<const CellVerdict> known)
     : mesh(m), params(p), stencil(build_stencil(m)), start(std::chrono::steady_clock::now()) {
   if (primal) bc = std::make_unique<BoundaryConstraints>(*primal, m);
   dof.assign(m.num_points(), 0);
@@ -31,6 +32,10 @@ Context::Context(PolyMesh& m, const ClassifiedTetMesh* primal, const OptimParams
     if (stencil.cells_of(PointId(i)).empty()) dof[i] = 0;
   V0 = cell_reference_volumes(stencil, p.metric, m.points);
   cell_valid.assign(m.num_cells(), 0);
+  if (known.size() == m.num_cells()) {
+    for (std::size_t c = 0; c < known.size(); ++c) cell_valid[c] = known[c].valid;
+    return;
+  }
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m.num_cells(), 256), [&](const auto& r) {
     std::vector<Point3> scratch;
     for (std::size_t c = r.begin(); c != r.end(); ++c)
@@ -85,10 +90,14 @@ void Context::refresh_cells(std::span<const std::uint32_t> cells) {
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells.size(), 64), [&](const auto& rg) {
     for (std::size_t i = rg.begin(); i != rg.end(); ++i) {
       const std::uint32_t c = cells[i];
-      recorded_energy[c] = grads ? cell_energy_gradient(stencil, c, params.metric, mesh.points, V0[c], params.c, nullptr,
-                                                        &grad_R[c], grad_F.data() + stencil.cell_loop_off[c])
-                                 : cell_energy(stencil, c, params.metric, mesh.points, V0[c], params.c);
-      cell_quality[c] = polydual::cell_quality(stencil, c, params.metric, mesh.points);
+      if (grads) {
+        recorded_energy[c] = cell_energy_gradient(stencil, c, params.metric, mesh.points, V0[c], params.c, nullptr,
+                                                  &grad_R[c], grad_F.data() + stencil.cell_loop_off[c]);
+        cell_quality[c] = polydual::cell_quality(stencil, c, params.metric, mesh.points);
+      } else {
+        recorded_energy[c] =
+            cell_energy_and_quality(stencil, c, params.metric, mesh.points, V0[c], params.c, &cell_quality[c]);
+      }
     }
   });
 }
@@ -143,12 +152,13 @@ void Context::basis(PointId p, Vec3 B[3]) const {
 }  // namespace optim_detail
 
 OptimReport optimize(PolyMesh& mesh, const ClassifiedTetMesh* primal, const OptimParams& params,
-                     const ProgressFn& progress, std::span<const char> seed_cells) {
+                     const ProgressFn& progress, std::span<const char> seed_cells,
+                     std::span<const CellVerdict> known) {
   if (!seed_cells.empty() && seed_cells.size() != mesh.num_cells())
     throw UsageError("optimize: " + std::to_string(seed_cells.size()) + " seed flags for " +
                      std::to_string(mesh.num_cells()) + " cells");
   OptimReport rep;
-  optim_detail::Context ctx(mesh, primal, params);
+  optim_detail::Context ctx(mesh, primal, params, known);
   ctx.report = &rep;
   ctx.progress = &progress;
   ctx.seed_cells = seed_cells;

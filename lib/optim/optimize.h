@@ -14,6 +14,7 @@
 #include "mesh/poly_mesh.h"
 #include "quality/corner.h"
 #include "quality/metrics.h"
+#include "quality/star_verdict.h"
 
 namespace polydual {
 
@@ -141,8 +142,12 @@ struct OptimReport {
 // seed_cells (Local and Untangle; empty: every point, the default): the
 // smoothing starts from the points of these cells only and spreads by the
 // settling rule (a re-optimisation after a local change, e.g. the split).
+// known (empty: computed here): the exact star verdicts of mesh as it is, one
+// per cell (check_mesh's, pipeline/check.h), so that the optimiser does not
+// test every cell again before it starts.
 OptimReport optimize(PolyMesh& mesh, const ClassifiedTetMesh* primal, const OptimParams& params,
-                     const ProgressFn& progress = {}, std::span<const char> seed_cells = {});
+                     const ProgressFn& progress = {}, std::span<const char> seed_cells = {},
+                     std::span<const CellVerdict> known = {});
 
 // CLI parsers; throw UsageError on an unknown value.
 OptimParams::Method parse_method(std::string_view s);             // none|untangle|local|global

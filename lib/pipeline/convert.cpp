@@ -112,16 +112,31 @@ VertexCuts union_of_cuts(const SplitState& st, const ClassifiedTetMesh& m) {
 // round's record.
 Json split_round(ConvertResult& r, const PolyMesh& old, const CheckResult& old_check, SplitState& st,
                  const PipelineParams& params) {
+  Json sec = Json::object();  // the round's parts, wall seconds
+  Stopwatch w;
+  auto lap = [&](const char* part) {
+    sec.set(part, w.seconds());
+    w = Stopwatch();
+  };
   st.cuts = union_of_cuts(st, r.primal);
-  PolyMesh fresh = build_dual(r.primal, params.dual, nullptr, &st.cuts);
+  lap("cuts");
+  DualStats ds;
+  PolyMesh fresh = build_dual(r.primal, params.dual, &ds, &st.cuts);
+  lap("dual");
+  sec.set("dual_parts", ds.to_json());
   Json j = Json::object();
   j.set("vertices_whole", std::size_t(std::count(st.whole.begin(), st.whole.end(), char(1))));
   j.set("cells", fresh.num_cells());
   std::vector<PointId> from_old;
   j.set("points_warm_started", warm_start(fresh, old, r.primal, st.cuts, &from_old));
-  r.check = recheck_mesh(fresh, old, old_check, from_old);
+  lap("warm_start");
+  RecheckStats rs;
+  r.check = recheck_mesh(fresh, old, old_check, from_old, &rs);
+  lap("star_test");
   r.mesh = std::move(fresh);
   j.set("invalid_after", r.check.invalid_cells);
+  j.set("cells_rechecked", rs.rechecked);
+  j.set("seconds", sec);
   return j;
 }
 
@@ -210,7 +225,8 @@ void run_split(ConvertResult& r, SplitState& st, const PipelineParams& params, c
       const std::vector<char> seed = split_region(r.primal, st.cuts, r.mesh);
       const bool local = params.optim.method != OptimParams::Method::Global;
       stats.set("optimize", optimize(r.mesh, &r.primal, params.optim, hooks.progress,
-                                     local ? std::span<const char>(seed) : std::span<const char>())
+                                     local ? std::span<const char>(seed) : std::span<const char>(),
+                                     r.check.verdicts)
                                 .to_json());
       r.check = check_mesh(r.mesh, &r.primal, false);
     }
@@ -294,11 +310,12 @@ void run_pipeline(ConvertResult& r, const TetSoup& soup, const PipelineParams& p
   rep.invalid_before = r.check.invalid_cells;
   if (optimise) {
     run_stage(rep, hooks, "optimize", [&](Json& stats) {
-      stats = optimize(r.mesh, &r.primal, params.optim, hooks.progress).to_json();
+      stats = optimize(r.mesh, &r.primal, params.optim, hooks.progress, {}, r.check.verdicts).to_json();
       return 0;
     });
+    // With the split, check_split validates the mesh that is returned.
     r.check = run_stage(rep, hooks, "check_after", [&](Json& stats) {
-      CheckResult c = check_mesh(r.mesh, &r.primal);
+      CheckResult c = check_mesh(r.mesh, &r.primal, !params.split.enabled);
       stats = c.to_json();
       return c;
     });

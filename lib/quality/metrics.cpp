@@ -43,6 +43,14 @@ double corner_kappa_mod_gradient(const Vec3& e1, const Vec3& e2, const Vec3& e3,
   return kmod;
 }
 
+namespace {
+// The mean kappa/3 of cell_quality from the corners' sum and count.
+double quality_of(double sum, std::size_t n, bool tangled) {
+  if (tangled || n == 0) return std::numeric_limits<double>::infinity();
+  return sum / (3.0 * static_cast<double>(n));
+}
+}  // namespace
+
 double cell_quality(const MeshStencil& s, std::uint32_t c, Metric m, std::span<const Point3> points) {
   double sum = 0;
   std::size_t n = 0;
@@ -54,8 +62,24 @@ double cell_quality(const MeshStencil& s, std::uint32_t c, Metric m, std::span<c
                             sum += k;
                             ++n;
                           });
-  if (tangled || n == 0) return std::numeric_limits<double>::infinity();
-  return sum / (3.0 * static_cast<double>(n));
+  return quality_of(sum, n, tangled);
+}
+
+double cell_energy_and_quality(const MeshStencil& s, std::uint32_t c, Metric m, std::span<const Point3> points,
+                               double V0, double c_delta, double* quality) {
+  double e = 0, sum = 0;
+  std::size_t n = 0;
+  bool tangled = false;
+  for_each_corner<double>(s, c, m, PointsPos{points.data()},
+                          [&](const double* e1, const double* e2, const double* e3) {
+                            e += corner_kappa_mod(e1, e2, e3, V0, c_delta);
+                            const double k = corner_kappa(e1, e2, e3);
+                            if (!(k > 0) || !std::isfinite(k)) tangled = true;
+                            sum += k;
+                            ++n;
+                          });
+  *quality = quality_of(sum, n, tangled);
+  return e;
 }
 
 std::vector<double> cell_qualities(const MeshStencil& s, Metric m, std::span<const Point3> points) {

@@ -50,5 +50,9 @@ std::vector<double> cell_reference_volumes(const MeshStencil& s, Metric m,
 // Sum of kappa_mod over the corners of cell c (the objective's cell term, design §7).
 double cell_energy(const MeshStencil& s, std::uint32_t c, Metric m, std::span<const Point3> points,
                    double V0, double c_delta);
+// cell_energy, and cell_quality into *quality, from one pass over the corners
+// (each bit for bit the value of its own function).
+double cell_energy_and_quality(const MeshStencil& s, std::uint32_t c, Metric m, std::span<const Point3> points,
+                               double V0, double c_delta, double* quality);
 
 }  // namespace polydual
