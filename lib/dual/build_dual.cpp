@@ -135,7 +135,7 @@ DualPoints make_points(const ClassifiedTetMesh& m, const CutTopology& ct, PolyMe
   d.edge_point.init(m.num_edges());
   const std::uint32_t first_edge_point = std::uint32_t(pm.num_points());
   for (std::size_t e = 0; e < m.num_edges(); ++e) {
-    if (!(ct.active ? ct.stop[e] != 0 : m.edge_class(EdgeId(e)).dim == 1)) continue;
+    if (!(ct.active ? ct.stop(EdgeId(e)) : m.edge_class(EdgeId(e)).dim == 1)) continue;
     const auto& v = m.edge(EdgeId(e));
     add(0.5 * (m.point(v[0]) + m.point(v[1])), m.edge_class(EdgeId(e)), 1, e);
     d.edge_point.set(e);
@@ -174,9 +174,10 @@ template <bool kCuts>
   std::vector<PointId> loop;
   for (std::size_t e = 0; e < m.num_edges(); ++e) {
     const EdgeId eid(e);
-    if (!kCuts && m.edge_class(eid).dim == 3) {
+    if (m.edge_class(eid).dim == 3 && (!kCuts || !ct.ring_cut(eid))) {
       // Classified in a region: no model-face triangle around it (classify()),
-      // so the ring is closed and uncut: one face of the tet centres.
+      // so the ring is closed; with no cut triangle in it either, it is uncut:
+      // one face of the tet centres (what the general path below gives).
       const auto [a, b] = m.edge(eid);
       m.for_each_closed_ring_tet(eid, [&](TetId t) { pm.face_points.push_back(PointId(t.idx)); });
       const TetId t0 = m.edge_tet(eid);
@@ -298,8 +299,8 @@ struct CapRuns {
       A[k] = t[(i + 1) % 3];
       B[k] = t[(i + 2) % 3];
       const EdgeId ea = m.triangle_edge(L[k], v, A[k]), eb = m.triangle_edge(L[k], v, B[k]);
-      stopA[k] = ct.active ? ct.stop[ea.idx] : m.edge_class(ea).dim == 1;
-      stopB[k] = ct.active ? ct.stop[eb.idx] : m.edge_class(eb).dim == 1;
+      stopA[k] = ct.active ? ct.stop(ea) : m.edge_class(ea).dim == 1;
+      stopB[k] = ct.active ? ct.stop(eb) : m.edge_class(eb).dim == 1;
     }
   }
   // The run triangle other than k sharing edge (v, w), or -1 at a stop edge
@@ -517,7 +518,7 @@ double mean_edge_length(const ClassifiedTetMesh& m) {
 void reserve_dual(const ClassifiedTetMesh& m, const CutTopology& ct, PolyMesh& pm) {
   std::size_t nmf = 0, nme = 0, nmv = 0;
   for (std::size_t f = 0; f < m.num_triangles(); ++f) nmf += m.on_model_face(TriId(f)) || ct.is_cut(TriId(f));
-  for (std::size_t e = 0; e < m.num_edges(); ++e) nme += ct.active ? ct.stop[e] != 0 : m.edge_class(EdgeId(e)).dim == 1;
+  for (std::size_t e = 0; e < m.num_edges(); ++e) nme += ct.active ? ct.stop(EdgeId(e)) : m.edge_class(EdgeId(e)).dim == 1;
   for (std::size_t v = 0; v < m.num_vertices(); ++v)
     nmv += ct.active ? ct.vertex_point[v] != 0 : m.vertex_class(VertexId(v)).dim == 0;
   const std::size_t np = m.num_tets() + nmf + nme + nmv;

@@ -110,7 +110,13 @@ CutTopology cut_topology(const ClassifiedTetMesh& m, const VertexCuts* cuts) {
     }
   // Stop edges; per vertex the number of stop edges on which one of its caps
   // ends (saturating at 3: only ">= 3" matters).
-  ct.stop.assign(m.num_edges(), 0);
+  ct.edge_bits.assign(m.num_edges(), 0);
+  for (std::size_t f = 0; f < ct.tri_mask.size(); ++f) {
+    if (ct.tri_mask[f] == 0) continue;
+    const auto t = m.triangle(TriId(f));
+    for (int i = 0; i < 3; ++i)
+      ct.edge_bits[m.triangle_edge(TriId(f), t[i], t[(i + 1) % 3]).idx] |= CutTopology::kRingCut;
+  }
   std::vector<std::uint8_t> ends(m.num_vertices(), 0);
   std::vector<TetId> ring;
   std::vector<TriId> tris;
@@ -123,7 +129,7 @@ CutTopology cut_topology(const ClassifiedTetMesh& m, const VertexCuts* cuts) {
     EdgeStop s = edge_stop(m, ct, e, ring, tris);
     s.stop = s.stop || whole;  // C5: every edge of a whole vertex has its midpoint
     if (!s.stop) continue;
-    ct.stop[ei] = 1;
+    ct.edge_bits[ei] |= CutTopology::kStop;
     if (s.caps_a && ends[a.idx] < 3) ++ends[a.idx];
     if (s.caps_b && ends[b.idx] < 3) ++ends[b.idx];
   }
