@@ -108,8 +108,7 @@ CutTopology cut_topology(const ClassifiedTetMesh& m, const VertexCuts* cuts) {
       for (int i = 0; i < 3; ++i)
         if (t[i] == VertexId(v)) ct.tri_mask[f.idx] |= std::uint8_t(1u << i);
     }
-  // Stop edges; per vertex the number of stop edges on which one of its caps
-  // ends (saturating at 3: only ">= 3" matters).
+  // The edges of every cut triangle have a cut in their ring.
   ct.edge_bits.assign(m.num_edges(), 0);
   for (std::size_t f = 0; f < ct.tri_mask.size(); ++f) {
     if (ct.tri_mask[f] == 0) continue;
@@ -117,6 +116,8 @@ CutTopology cut_topology(const ClassifiedTetMesh& m, const VertexCuts* cuts) {
     for (int i = 0; i < 3; ++i)
       ct.edge_bits[m.triangle_edge(TriId(f), t[i], t[(i + 1) % 3]).idx] |= CutTopology::kRingCut;
   }
+  // Stop edges; per vertex the number of stop edges on which one of its caps
+  // ends (saturating at 3: only ">= 3" matters).
   std::vector<std::uint8_t> ends(m.num_vertices(), 0);
   std::vector<TetId> ring;
   std::vector<TriId> tris;
