@@ -166,7 +166,8 @@ DualPoints make_points(const ClassifiedTetMesh& m, const CutTopology& ct, PolyMe
 // loop (as calls they cost ~5% of the dual's instructions, callgrind).
 template <bool kCuts>
 [[gnu::flatten]] void make_edge_faces(const ClassifiedTetMesh& m, const CutTopology& ct, const VertexSides& sides,
-                     const DualPoints& d, PolyMesh& pm, std::vector<std::uint32_t>& model_faces) {
+                     const DualPoints& d, PolyMesh& pm, std::vector<std::uint32_t>& model_faces,
+                     std::span<const char> active) {
   std::vector<TetId> ring;
   std::vector<TriId> tris;
   std::vector<std::size_t> cuts;
@@ -174,6 +175,7 @@ template <bool kCuts>
   std::vector<PointId> loop;
   for (std::size_t e = 0; e < m.num_edges(); ++e) {
     const EdgeId eid(e);
+    if (!active.empty() && !active[m.edge(eid)[0].idx] && !active[m.edge(eid)[1].idx]) continue;  // DualScope
     if (m.edge_class(eid).dim == 3 && (!kCuts || !ct.ring_cut(eid))) {
       // Classified in a region: no model-face triangle around it (classify()),
       // so the ring is closed; with no cut triangle in it either, it is uncut:
@@ -370,14 +372,14 @@ void cap_loop(const ClassifiedTetMesh& m, const DualPoints& d, VertexId v, std::
 // edge has exactly two of them, of one model face or both cut): each walk is
 // a run. A cap on cut triangles is an interior face between two sides of v.
 void make_caps(const ClassifiedTetMesh& m, const CutTopology& ct, const VertexSides& sides, const DualPoints& d,
-               PolyMesh& pm, DualStats& st) {
+               PolyMesh& pm, DualStats& st, std::span<const char> active) {
   const VertexTriangles vt = vertex_cap_triangles(m, ct);
   CapRuns runs;
   std::vector<PointId> loop;
   for (std::size_t vi = 0; vi < m.num_vertices(); ++vi) {
     const VertexId v(vi);
     const std::span<const TriId> L = vt.of(vi);
-    if (L.empty()) continue;
+    if (L.empty() || (!active.empty() && !active[vi])) continue;
     runs.load(m, ct, v, L);
     for (std::uint32_t i0 = 0; i0 < runs.n; ++i0) {
       if (runs.visited[i0]) continue;
@@ -569,8 +571,12 @@ Json DualStats::to_json() const {
   return j;
 }
 
+double dual_collapse_length(const ClassifiedTetMesh& m, const DualParams& params) {
+  return params.collapse_tolerance * mean_edge_length(m);
+}
+
 DualDraft build_dual_draft(const ClassifiedTetMesh& m, const DualParams& params, DualStats* stats,
-                           const VertexCuts* cuts) {
+                           const VertexCuts* cuts, const DualScope* scope) {
   params.validate();
   DualStats local;
   DualStats& st = stats ? *stats : local;
@@ -586,7 +592,8 @@ DualDraft build_dual_draft(const ClassifiedTetMesh& m, const DualParams& params,
   // error bounds before the faces fill memory.
   t0 = Clock::now();
   if (params.cleanup) {
-    draft.collapse_length = params.collapse_tolerance * mean_edge_length(m);
+    draft.collapse_length =
+        scope && scope->collapse_length >= 0 ? scope->collapse_length : dual_collapse_length(m, params);
     PointPairs pairs = point_pairs(m, ct, d, pm, draft.collapse_length);
     draft.exact_pairs = std::move(pairs.exact);
     draft.short_pairs = std::move(pairs.short_);
@@ -601,10 +608,11 @@ DualDraft build_dual_draft(const ClassifiedTetMesh& m, const DualParams& params,
   st.seconds_sides = since(t0);
   t0 = Clock::now();
   std::vector<std::uint32_t> model_faces;
-  if (ct.active) make_edge_faces<true>(m, ct, sides, d, pm, model_faces);
-  else make_edge_faces<false>(m, ct, sides, d, pm, model_faces);
+  const std::span<const char> active = scope ? scope->active : std::span<const char>();
+  if (ct.active) make_edge_faces<true>(m, ct, sides, d, pm, model_faces, active);
+  else make_edge_faces<false>(m, ct, sides, d, pm, model_faces, active);
   const std::size_t first_cap = pm.num_faces();
-  make_caps(m, ct, sides, d, pm, st);  // every cap has model points
+  make_caps(m, ct, sides, d, pm, st, active);  // every cap has model points
   for (std::size_t f = first_cap; f < pm.num_faces(); ++f) model_faces.push_back(std::uint32_t(f));
   if (params.cleanup) draft.scan_faces = std::move(model_faces);
   st.seconds_faces = since(t0);
@@ -639,11 +647,11 @@ PolyMesh assemble_cells(DualDraft&& draft) {
 }
 
 PolyMesh build_dual(const ClassifiedTetMesh& m, const DualParams& params, DualStats* stats,
-                    const VertexCuts* cuts) {
+                    const VertexCuts* cuts, const DualScope* scope) {
   DualStats local;
   DualStats& st = stats ? *stats : local;
   st = DualStats{};
-  DualDraft draft = build_dual_draft(m, params, &st, cuts);
+  DualDraft draft = build_dual_draft(m, params, &st, cuts, scope);
   // Without hints (params.cleanup off) the cleanup only compacts: it drops
   // faces under 3 distinct points and points no face uses.
   const CleanupStats cs = cleanup_dual(draft);

@@ -9,6 +9,7 @@
 //   assemble_cells()    step 8: each cell's half-faces from the face owners.
 #pragma once
 #include <cstdint>
+#include <span>
 
 #include "core/json.h"
 #include "dual/cleanup.h"
@@ -53,6 +54,21 @@ struct DualStats {
   Json to_json() const;
 };
 
+// The dual of part of a mesh (the split's local rounds, split/local_round.h).
+// Only the faces of the cells of the active vertices are built: the fan faces
+// of the edges with an active end and the caps of the active vertices. The
+// cells of an active vertex v are then those of the whole mesh's dual when
+// the mesh holds every tet of star(v) and of the stars of v's neighbours
+// (every ring and cap they read is complete); the other cells are partial and
+// meaningless. A sub-mesh whose boundary is not a model boundary is safe:
+// no built face reads a triangle outside the active vertices' stars.
+struct DualScope {
+  std::span<const char> active;  // per vertex of the mesh; empty: all vertices
+  // Absolute collapse length (the whole mesh's tolerance x mean edge, so a
+  // sub-mesh collapses what the whole mesh does); < 0: from DualParams.
+  double collapse_length = -1;
+};
+
 // Steps 1-7 and the cleanup's hints (when params.cleanup). Fills the stats of
 // these steps (counts of well-centred/clamped simplices, slit faces, seconds
 // of points, sides, faces and hints); leaves the cleanup's and cells' alone.
@@ -67,8 +83,14 @@ struct DualStats {
 // Bad cut sets (not through their vertex, on a model face, not increasing,
 // sizes wrong) throw InputError naming the mesh's source and the vertex.
 // Every point's primal entity is in mesh.point_origin (internal numbering).
+// scope (null: the whole mesh, as without it): see DualScope.
 DualDraft build_dual_draft(const ClassifiedTetMesh& mesh, const DualParams& params = {},
-                           DualStats* stats = nullptr, const VertexCuts* cuts = nullptr);
+                           DualStats* stats = nullptr, const VertexCuts* cuts = nullptr,
+                           const DualScope* scope = nullptr);
+
+// The absolute length below which the cleanup collapses a dual edge:
+// params.collapse_tolerance x the mean primal edge length of m.
+double dual_collapse_length(const ClassifiedTetMesh& m, const DualParams& params);
 
 // Step 8: the cells' half-face lists (face order within a cell), from the face
 // owners and neighbours. Consumes the draft (hints, if any, are ignored).
@@ -77,6 +99,7 @@ PolyMesh assemble_cells(DualDraft&& draft);
 // build_dual_draft, then cleanup_dual (when params.cleanup), then
 // assemble_cells; *stats gets every stage's figures.
 PolyMesh build_dual(const ClassifiedTetMesh& mesh, const DualParams& params = {},
-                    DualStats* stats = nullptr, const VertexCuts* cuts = nullptr);
+                    DualStats* stats = nullptr, const VertexCuts* cuts = nullptr,
+                    const DualScope* scope = nullptr);
 
 }  // namespace polydual

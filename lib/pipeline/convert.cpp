@@ -9,6 +9,7 @@
 #include "io/output_guard.h"
 #include "io/read_tet_mesh.h"
 #include "split/cuts.h"
+#include "split/local_round.h"
 #include "split/recheck.h"
 #include "split/split.h"
 #include "split/warm_start.h"
@@ -125,6 +126,7 @@ Json split_round(ConvertResult& r, const PolyMesh& old, const CheckResult& old_c
   lap("dual");
   sec.set("dual_parts", ds.to_json());
   Json j = Json::object();
+  j.set("local", false);
   j.set("vertices_whole", std::size_t(std::count(st.whole.begin(), st.whole.end(), char(1))));
   j.set("cells", fresh.num_cells());
   std::vector<PointId> from_old;
@@ -138,6 +140,84 @@ Json split_round(ConvertResult& r, const PolyMesh& old, const CheckResult& old_c
   j.set("cells_rechecked", rs.rechecked);
   j.set("seconds", sec);
   return j;
+}
+
+// Per vertex (internal numbering), its cells that `check` found invalid.
+std::vector<std::uint32_t> invalid_per_vertex(const SplitState& st, const PolyMesh& mesh, const CheckResult& check) {
+  std::vector<std::uint32_t> bad(st.whole.size(), 0);
+  for (std::size_t c = 0; c < check.verdicts.size(); ++c)
+    bad[st.internal_of_input[mesh.cell_primal[c].idx].idx] += !check.verdicts[c].valid;
+  return bad;
+}
+
+// The vertices with an invalid cell not yet whole, now marked whole (escalate
+// on per-vertex counts), increasing.
+std::vector<VertexId> escalate_local(SplitState& st, const ClassifiedTetMesh& m,
+                                     const std::vector<std::uint32_t>& bad) {
+  std::vector<VertexId> raised;
+  for (std::size_t v = 0; v < bad.size(); ++v) {
+    if (!bad[v] || st.whole[v]) continue;
+    st.whole[v] = 1;
+    if (st.cause[v] == CutCause::None) st.cause[v] = invalid_cause(m, VertexId(v));
+    raised.push_back(VertexId(v));
+  }
+  return raised;
+}
+
+// The whole rebuild with the union of cuts and its exact check, into r.
+Json whole_build(ConvertResult& r, SplitState& st, const PipelineParams& params) {
+  Json sec = Json::object();
+  Stopwatch w;
+  st.cuts = union_of_cuts(st, r.primal);
+  sec.set("cuts", w.seconds());
+  w = Stopwatch();
+  DualStats ds;
+  r.mesh = build_dual(r.primal, params.dual, &ds, &st.cuts);
+  sec.set("dual", w.seconds());
+  sec.set("dual_parts", ds.to_json());
+  w = Stopwatch();
+  r.check = check_mesh(r.mesh, &r.primal, false);
+  sec.set("star_test", w.seconds());
+  Json j = Json::object();
+  j.set("local", false);
+  j.set("vertices_whole", std::size_t(std::count(st.whole.begin(), st.whole.end(), char(1))));
+  j.set("cells", r.mesh.num_cells());
+  j.set("invalid_after", r.check.invalid_cells);
+  j.set("cells_rechecked", r.mesh.num_cells());
+  j.set("seconds", sec);
+  return j;
+}
+
+// The split's rounds without an optimiser (split/local_round.h): the current
+// mesh is freed, each round rebuilds and star-tests only the cells around the
+// vertices it cuts whole, and one whole build with every cut, checked
+// exactly, ends them (its record is the last of `rounds`). Returns the
+// number of local rounds run (at most params.split.max_rounds).
+int run_local_rounds(ConvertResult& r, SplitState& st, const PipelineParams& params, Json& rounds) {
+  std::vector<std::uint32_t> bad = invalid_per_vertex(st, r.mesh, r.check);
+  r.mesh = PolyMesh{};  // the final build replaces it: one whole dual alive at a time
+  r.check = CheckResult{};
+  const double collapse = dual_collapse_length(r.primal, params.dual);
+  int k = 0;
+  for (; k < params.split.max_rounds; ++k) {
+    throw_if_interrupted();
+    const std::vector<VertexId> raised = escalate_local(st, r.primal, bad);
+    if (raised.empty()) break;
+    const LocalRound lr = local_round(r.primal, st.free_edge, st.whole, raised, params.dual, collapse);
+    std::size_t invalid = 0;
+    for (std::size_t i = 0; i < lr.vertices.size(); ++i) bad[lr.vertices[i].idx] = lr.invalid[i];
+    for (std::uint32_t b : bad) invalid += b;
+    Json j = Json::object();
+    j.set("local", true);
+    j.set("vertices_whole", std::size_t(std::count(st.whole.begin(), st.whole.end(), char(1))));
+    j.set("sub_mesh_tets", lr.tets);
+    j.set("invalid_after", invalid);
+    j.set("cells_rechecked", lr.cells_tested);
+    j.set("seconds", lr.seconds);
+    rounds.push(std::move(j));
+  }
+  rounds.push(whole_build(r, st, params));
+  return k;
 }
 
 // Cells of the uncut dual that were split, by the cause of their vertex; and
@@ -193,8 +273,24 @@ void run_split(ConvertResult& r, SplitState& st, const PipelineParams& params, c
     VertexCuts best_cuts;
     bool best_is_current = true;
     std::size_t best_invalid = r.check.invalid_cells;
-    int best_round = 0;
-    for (int k = 0; k < params.split.max_rounds && r.check.invalid_cells > 0; ++k) {
+    int best_round = 0, k0 = 0;
+    if (params.optim.method == OptimParams::Method::None && best_invalid > 0) {
+      // No optimised positions to warm-start from: local rounds (their
+      // verdicts are the whole mesh's, proofs/split.md L5), then one whole
+      // build, exactly checked. T2 compares it with the first dual, which
+      // (unoptimised) is rebuilt when it was no worse.
+      k0 = run_local_rounds(r, st, params, rounds);
+      if (r.check.invalid_cells < best_invalid) {
+        best_invalid = r.check.invalid_cells;
+        best_round = k0;
+      } else {
+        best_is_current = false;
+        best_cuts = st.free_edge;
+        best_mesh = build_dual(r.primal, params.dual, nullptr, best_cuts.empty() ? nullptr : &best_cuts);
+        best_check = check_mesh(best_mesh, &r.primal, false);
+      }
+    }
+    for (int k = k0; k < params.split.max_rounds && r.check.invalid_cells > 0; ++k) {
       throw_if_interrupted();
       if (!escalate(st, r.primal, r.mesh, r.check)) break;
       PolyMesh old = std::move(r.mesh);

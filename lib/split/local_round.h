@@ -1,0 +1,39 @@
+// A local round of the split loop (split/split.h, pipeline/convert.cpp): after
+// the vertices D are newly cut whole, only the cells of U = N[D] (D and its
+// neighbours) can change (every point, face and side of a cell of w reads
+// only the tets of star(w), and a tet of star(w) holds a vertex of D only if
+// w is in N[D]; proofs/split.md, L5). So the round builds the dual of the
+// sub-mesh star(U) (mesh/sub_mesh.h) with the faces of U's cells only
+// (dual/build_dual.h, DualScope) and star-tests U's cells, instead of
+// rebuilding and rechecking the whole dual. Its verdicts only choose which
+// vertices the next round cuts: the mesh returned is one whole build, checked
+// exactly (the caller's), so correctness never rests on a local round.
+#pragma once
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/json.h"
+#include "dual/build_dual.h"
+#include "dual/vertex_cuts.h"
+#include "mesh/classified_tet_mesh.h"
+
+namespace polydual {
+
+struct LocalRound {
+  std::vector<VertexId> vertices;      // U = N[D], increasing (the whole mesh's numbering)
+  std::vector<std::uint32_t> invalid;  // per vertex of U, its cells the star test found invalid
+  std::size_t tets = 0;                // of the sub-mesh
+  std::size_t cells_tested = 0;
+  Json seconds = Json::object();       // sub_mesh, cuts, dual, star_test (wall)
+};
+
+// The dual of star(N[changed]) with the cuts of the whole mesh restricted to
+// it: the free-edge cuts of every vertex (the triangles with both tets in the
+// sub-mesh) and the whole cuts of the vertices marked in `whole` (per vertex
+// of m). collapse_length: the whole mesh's (dual_collapse_length), so the
+// sub-mesh collapses what the whole mesh does.
+LocalRound local_round(const ClassifiedTetMesh& m, const VertexCuts& free_edge, std::span<const char> whole,
+                       std::span<const VertexId> changed, const DualParams& params, double collapse_length);
+
+}  // namespace polydual
