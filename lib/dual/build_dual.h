@@ -58,10 +58,11 @@ struct DualStats {
 // Only the faces of the cells of the active vertices are built: the fan faces
 // of the edges with an active end and the caps of the active vertices. The
 // cells of an active vertex v are then those of the whole mesh's dual when
-// the mesh holds every tet of star(v) and of the stars of v's neighbours
-// (every ring and cap they read is complete); the other cells are partial and
-// meaningless. A sub-mesh whose boundary is not a model boundary is safe:
-// no built face reads a triangle outside the active vertices' stars.
+// the mesh is a sub-mesh (mesh/sub_mesh.h) holding every tet of star(v):
+// every ring and cap they read is complete (proofs/split.md L5, up to a
+// clean-up chain leaving the sub-mesh); the other cells are partial and
+// meaningless. A sub-mesh boundary that is not a model boundary is safe: no
+// built face reads a triangle outside the active vertices' stars.
 struct DualScope {
   std::span<const char> active;  // per vertex of the mesh; empty: all vertices
   // Absolute collapse length (the whole mesh's tolerance x mean edge, so a

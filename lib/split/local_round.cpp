@@ -55,32 +55,40 @@ VertexCuts sub_cuts(const ClassifiedTetMesh& m, const SubMesh& s, const VertexCu
 
 }  // namespace
 
+LocalDual local_dual(const ClassifiedTetMesh& m, const VertexCuts& free_edge, std::span<const char> whole,
+                     std::span<const VertexId> changed, const DualParams& params, double collapse_length) {
+  Stopwatch w;
+  std::vector<char> in_u;
+  const std::vector<VertexId> u = closed_neighbourhood(m, changed, in_u);
+  LocalDual out{sub_mesh(m, star_tets(m, u)), {}, {}, Json::object()};
+  out.active.assign(out.sub.vertex.size(), 0);
+  for (std::size_t v = 0; v < out.sub.vertex.size(); ++v) out.active[v] = in_u[out.sub.vertex[v].idx];
+  out.seconds.set("sub_mesh", w.seconds());
+  w = Stopwatch();
+  const VertexCuts cuts = sub_cuts(m, out.sub, free_edge, whole);
+  out.seconds.set("cuts", w.seconds());
+  w = Stopwatch();
+  const DualScope scope{out.active, collapse_length};
+  out.dual = build_dual(out.sub.mesh, params, nullptr, &cuts, &scope);
+  out.seconds.set("dual", w.seconds());
+  return out;
+}
+
 LocalRound local_round(const ClassifiedTetMesh& m, const VertexCuts& free_edge, std::span<const char> whole,
                        std::span<const VertexId> changed, const DualParams& params, double collapse_length) {
   LocalRound out;
+  const LocalDual ld = local_dual(m, free_edge, whole, changed, params, collapse_length);
+  const SubMesh& s = ld.sub;
+  const PolyMesh& dual = ld.dual;
+  out.seconds = ld.seconds;
   Stopwatch w;
-  auto lap = [&](const char* part) {
-    out.seconds.set(part, w.seconds());
-    w = Stopwatch();
-  };
-  std::vector<char> in_u;
-  out.vertices = closed_neighbourhood(m, changed, in_u);
-  const SubMesh s = sub_mesh(m, star_tets(m, out.vertices));
   out.tets = s.mesh.num_tets();
-  std::vector<char> active(s.vertex.size(), 0);
-  for (std::size_t v = 0; v < s.vertex.size(); ++v) active[v] = in_u[s.vertex[v].idx];
-  lap("sub_mesh");
-  const VertexCuts cuts = sub_cuts(m, s, free_edge, whole);
-  lap("cuts");
-  const DualScope scope{active, collapse_length};
-  const PolyMesh dual = build_dual(s.mesh, params, nullptr, &cuts, &scope);
-  lap("dual");
   // Cells are numbered by sub-mesh vertex (every vertex of a sub-mesh has a
   // tet, so at least one cell), then by side: a walk pairs them.
   std::vector<std::uint32_t> cells, cell_vertex;  // tested cell -> index in s.vertex
   for (std::size_t c = 0, v = 0; c < dual.num_cells(); ++c) {
     while (s.mesh.input_vertex(VertexId(v)) != dual.cell_primal[c].idx) ++v;
-    if (!active[v]) continue;
+    if (!ld.active[v]) continue;
     cells.push_back(std::uint32_t(c));
     cell_vertex.push_back(std::uint32_t(v));
   }
@@ -90,10 +98,12 @@ LocalRound local_round(const ClassifiedTetMesh& m, const VertexCuts& free_edge, 
   out.cells_tested = cells.size();
   std::vector<std::uint32_t> bad(s.vertex.size(), 0);
   for (std::size_t i = 0; i < cells.size(); ++i) bad[cell_vertex[i]] += !verdicts[cells[i]].valid;
-  out.invalid.reserve(out.vertices.size());
   for (std::size_t v = 0; v < s.vertex.size(); ++v)
-    if (active[v]) out.invalid.push_back(bad[v]);
-  lap("star_test");
+    if (ld.active[v]) {
+      out.vertices.push_back(s.vertex[v]);
+      out.invalid.push_back(bad[v]);
+    }
+  out.seconds.set("star_test", w.seconds());
   return out;
 }
 

@@ -17,22 +17,36 @@
 #include "dual/build_dual.h"
 #include "dual/vertex_cuts.h"
 #include "mesh/classified_tet_mesh.h"
+#include "mesh/sub_mesh.h"
 
 namespace polydual {
+
+// The sub-mesh star(N[changed]), its active vertices (those of N[changed])
+// and its dual with the faces of the active vertices' cells only, built with
+// the whole mesh's cuts restricted to it: the free-edge cuts of every vertex
+// (the triangles with both tets in the sub-mesh) and the whole cuts of the
+// vertices marked in `whole` (per vertex of m). collapse_length: the whole
+// mesh's (dual_collapse_length), so the sub-mesh collapses what the whole mesh
+// does. The k-th cell of an active vertex is the k-th cell of that vertex in
+// the whole mesh's dual (proofs/split.md L5; tests/split_local_round_test.cpp).
+struct LocalDual {
+  SubMesh sub;
+  std::vector<char> active;  // per vertex of sub.mesh
+  PolyMesh dual;
+  Json seconds;  // sub_mesh, cuts, dual (wall)
+};
+LocalDual local_dual(const ClassifiedTetMesh& m, const VertexCuts& free_edge, std::span<const char> whole,
+                     std::span<const VertexId> changed, const DualParams& params, double collapse_length);
 
 struct LocalRound {
   std::vector<VertexId> vertices;      // U = N[D], increasing (the whole mesh's numbering)
   std::vector<std::uint32_t> invalid;  // per vertex of U, its cells the star test found invalid
   std::size_t tets = 0;                // of the sub-mesh
   std::size_t cells_tested = 0;
-  Json seconds = Json::object();       // sub_mesh, cuts, dual, star_test (wall)
+  Json seconds = Json::object();       // local_dual's, and star_test (wall)
 };
 
-// The dual of star(N[changed]) with the cuts of the whole mesh restricted to
-// it: the free-edge cuts of every vertex (the triangles with both tets in the
-// sub-mesh) and the whole cuts of the vertices marked in `whole` (per vertex
-// of m). collapse_length: the whole mesh's (dual_collapse_length), so the
-// sub-mesh collapses what the whole mesh does.
+// local_dual, then the exact star test of the active vertices' cells.
 LocalRound local_round(const ClassifiedTetMesh& m, const VertexCuts& free_edge, std::span<const char> whole,
                        std::span<const VertexId> changed, const DualParams& params, double collapse_length);
 

@@ -13,6 +13,10 @@
 //            and checked; a neighbour that the barycentric points turn
 //            invalid is cut whole in the next round. The mesh kept is then
 //            optimised once more. At most max_rounds rounds.
+//   without an optimiser the rounds are local (split/local_round.h,
+//            proofs/split.md L5): only the cells around the newly whole
+//            vertices are rebuilt and tested, then one whole build with
+//            every cut is checked exactly.
 #pragma once
 #include "core/json.h"
 
