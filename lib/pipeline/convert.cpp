@@ -192,20 +192,21 @@ Json whole_build(ConvertResult& r, SplitState& st, const PipelineParams& params)
 // mesh is freed, each round rebuilds and star-tests only the cells around the
 // vertices it cuts whole, and one whole build with every cut, checked
 // exactly, ends them (its record is the last of `rounds`). Returns the
-// number of local rounds run (at most params.split.max_rounds).
+// number of local rounds run (at most params.split.max_rounds); none (and
+// r untouched) when no vertex is to be cut.
 int run_local_rounds(ConvertResult& r, SplitState& st, const PipelineParams& params, Json& rounds) {
   std::vector<std::uint32_t> bad = invalid_per_vertex(st, r.mesh, r.check);
+  std::vector<VertexId> raised = escalate_local(st, r.primal, bad);
+  if (raised.empty()) return 0;
   r.mesh = PolyMesh{};  // the final build replaces it: one whole dual alive at a time
   r.check = CheckResult{};
   const double collapse = dual_collapse_length(r.primal, params.dual);
   int k = 0;
-  for (; k < params.split.max_rounds; ++k) {
+  while (!raised.empty()) {
     throw_if_interrupted();
-    const std::vector<VertexId> raised = escalate_local(st, r.primal, bad);
-    if (raised.empty()) break;
     const LocalRound lr = local_round(r.primal, st.free_edge, st.whole, raised, params.dual, collapse);
-    std::size_t invalid = 0;
     for (std::size_t i = 0; i < lr.vertices.size(); ++i) bad[lr.vertices[i].idx] = lr.invalid[i];
+    std::size_t invalid = 0;
     for (std::uint32_t b : bad) invalid += b;
     Json j = Json::object();
     j.set("local", true);
@@ -215,6 +216,8 @@ int run_local_rounds(ConvertResult& r, SplitState& st, const PipelineParams& par
     j.set("cells_rechecked", lr.cells_tested);
     j.set("seconds", lr.seconds);
     rounds.push(std::move(j));
+    if (++k == params.split.max_rounds) break;
+    raised = escalate_local(st, r.primal, bad);
   }
   rounds.push(whole_build(r, st, params));
   return k;
@@ -274,16 +277,16 @@ void run_split(ConvertResult& r, SplitState& st, const PipelineParams& params, c
     bool best_is_current = true;
     std::size_t best_invalid = r.check.invalid_cells;
     int best_round = 0, k0 = 0;
-    if (params.optim.method == OptimParams::Method::None && best_invalid > 0) {
+    if (params.optim.method == OptimParams::Method::None && best_invalid > 0 && params.split.max_rounds > 0) {
       // No optimised positions to warm-start from: local rounds (their
       // verdicts are the whole mesh's, proofs/split.md L5), then one whole
       // build, exactly checked. T2 compares it with the first dual, which
       // (unoptimised) is rebuilt when it was no worse.
-      k0 = run_local_rounds(r, st, params, rounds);
-      if (r.check.invalid_cells < best_invalid) {
+      k0 = run_local_rounds(r, st, params, rounds);  // 0: nothing cut, r as it was
+      if (k0 > 0 && r.check.invalid_cells < best_invalid) {
         best_invalid = r.check.invalid_cells;
         best_round = k0;
-      } else {
+      } else if (k0 > 0) {
         best_is_current = false;
         best_cuts = st.free_edge;
         best_mesh = build_dual(r.primal, params.dual, nullptr, best_cuts.empty() ? nullptr : &best_cuts);
