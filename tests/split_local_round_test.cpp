@@ -124,22 +124,27 @@ TEST(LocalRound, CellsAndVerdictsAreThoseOfTheWholeDual) {
     const CheckResult full_check = check_mesh(full, &m, false);
     const double collapse = dual_collapse_length(m, dp);
 
-    const LocalDual ld = local_dual(m, fe, whole, d, dp, collapse);
     const auto in_full = cells_by_vertex(full, m.num_vertices());
-    const auto in_local = cells_by_vertex(ld.dual, m.num_vertices());
-    for (std::size_t v = 0; v < ld.sub.vertex.size(); ++v) {
-      if (!ld.active[v]) continue;
-      const std::uint32_t in = m.input_vertex(ld.sub.vertex[v]);
-      const auto [fc, fe_] = in_full[in];
-      const auto [lc, le] = in_local[in];
-      ASSERT_EQ(fe_ - fc, le - lc) << what << " vertex " << in;
-      for (std::size_t k = 0; k < fe_ - fc; ++k) {
-        ASSERT_TRUE(same_geometry(full, CellId(fc + k), ld.dual, CellId(lc + k))) << what << " vertex " << in;
-        ++compared;
+    // Both ways of building: on a sub-mesh (share 1: never the whole mesh)
+    // and on the whole mesh, scoped (share 0).
+    for (double share : {1.0, 0.0}) {
+      const LocalDual ld = local_dual(m, fe, whole, d, dp, collapse, share);
+      ASSERT_EQ(ld.on_whole_mesh, share == 0.0);
+      const auto in_local = cells_by_vertex(ld.dual, m.num_vertices());
+      for (std::size_t v = 0; v < ld.active.size(); ++v) {
+        if (!ld.active[v]) continue;
+        const std::uint32_t in = m.input_vertex(ld.whole_vertex(v));
+        const auto [fc, fe_] = in_full[in];
+        const auto [lc, le] = in_local[in];
+        ASSERT_EQ(fe_ - fc, le - lc) << what << " vertex " << in;
+        for (std::size_t k = 0; k < fe_ - fc; ++k) {
+          ASSERT_TRUE(same_geometry(full, CellId(fc + k), ld.dual, CellId(lc + k))) << what << " vertex " << in;
+          ++compared;
+        }
       }
     }
 
-    const LocalRound lr = local_round(m, fe, whole, d, dp, collapse);
+    const LocalRound lr = local_round(m, fe, whole, d, dp, collapse, seed % 2 ? 1.0 : 0.0);
     ASSERT_EQ(lr.vertices.size(), lr.invalid.size());
     for (std::size_t i = 0; i < lr.vertices.size(); ++i) {
       const std::uint32_t in = m.input_vertex(lr.vertices[i]);
@@ -160,7 +165,7 @@ TEST(LocalRound, CellsAndVerdictsAreThoseOfTheWholeDual) {
   }
   // The comparison ran on many cells, some of them invalid, and the cuts
   // changed verdicts (a local round that returned the old verdicts fails).
-  EXPECT_GT(compared, 2000u);
+  EXPECT_GT(compared, 4000u);
   EXPECT_GT(invalid_seen, 0u);
   EXPECT_GT(changed_verdicts, 10u);
   std::cout << "cells compared " << compared << ", invalid " << invalid_seen << ", vertices whose validity changed "

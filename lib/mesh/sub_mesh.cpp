@@ -6,11 +6,12 @@
 namespace polydual {
 
 std::vector<TetId> star_tets(const ClassifiedTetMesh& m, std::span<const VertexId> vertices) {
-  std::vector<TetId> out;
+  std::vector<char> in(m.num_tets(), 0);  // a mark per tet, then one ordered pass: no sort
   for (VertexId v : vertices)
-    for (TetId t : m.vertex_tets(v)) out.push_back(t);
-  std::sort(out.begin(), out.end(), [](TetId a, TetId b) { return a.idx < b.idx; });
-  out.erase(std::unique(out.begin(), out.end()), out.end());
+    for (TetId t : m.vertex_tets(v)) in[t.idx] = 1;
+  std::vector<TetId> out;
+  for (std::size_t t = 0; t < in.size(); ++t)
+    if (in[t]) out.push_back(TetId(t));
   return out;
 }
 

@@ -211,7 +211,8 @@ int run_local_rounds(ConvertResult& r, SplitState& st, const PipelineParams& par
     Json j = Json::object();
     j.set("local", true);
     j.set("vertices_whole", std::size_t(std::count(st.whole.begin(), st.whole.end(), char(1))));
-    j.set("sub_mesh_tets", lr.tets);
+    j.set("on_whole_mesh", lr.on_whole_mesh);
+    j.set("tets", lr.tets);
     j.set("invalid_after", invalid);
     j.set("cells_rechecked", lr.cells_tested);
     j.set("seconds", lr.seconds);

@@ -34,60 +34,83 @@ TriId sub_triangle(const ClassifiedTetMesh& m, const SubMesh& s, const std::vect
   return TriId::invalid();
 }
 
-// The whole mesh's cuts restricted to the sub-mesh (see local_round).
-VertexCuts sub_cuts(const ClassifiedTetMesh& m, const SubMesh& s, const VertexCuts& free_edge,
-                    std::span<const char> whole) {
+// The free-edge cuts of the whole mesh restricted to the sub-mesh: the cut
+// triangles with both tets in it.
+VertexCuts sub_free_edge_cuts(const ClassifiedTetMesh& m, const SubMesh& s, const VertexCuts& free_edge) {
+  if (free_edge.empty()) return {};
   std::vector<std::uint32_t> sub_of(m.num_tets(), std::uint32_t(-1));
   for (std::size_t t = 0; t < s.tet.size(); ++t) sub_of[s.tet[t].idx] = std::uint32_t(t);
   std::vector<std::pair<VertexId, TriId>> pairs;
-  std::vector<VertexId> whole_here;
-  for (std::size_t v = 0; v < s.vertex.size(); ++v) {
-    const VertexId w = s.vertex[v];
-    if (whole[w.idx]) whole_here.push_back(VertexId(v));
-    for (TriId f : free_edge.of(w)) {
+  for (std::size_t v = 0; v < s.vertex.size(); ++v)
+    for (TriId f : free_edge.of(s.vertex[v])) {
       const TriId g = sub_triangle(m, s, sub_of, f);
       if (g.valid()) pairs.emplace_back(VertexId(v), g);
     }
-  }
-  const std::size_t nv = s.mesh.num_vertices();
-  return VertexCuts::merged(nv, VertexCuts::from_pairs(nv, std::move(pairs)), fallback_cuts(s.mesh, whole_here));
+  return VertexCuts::from_pairs(s.mesh.num_vertices(), std::move(pairs));
+}
+
+// The cuts of ld's mesh: `free` (its free-edge cuts) and the whole cuts of
+// the vertices marked in `whole` (m's numbering).
+VertexCuts with_whole_cuts(const LocalDual& ld, const ClassifiedTetMesh& m, const VertexCuts& free,
+                           std::span<const char> whole) {
+  const ClassifiedTetMesh& mesh = ld.mesh(m);
+  std::vector<VertexId> marked;
+  for (std::size_t v = 0; v < mesh.num_vertices(); ++v)
+    if (whole[ld.whole_vertex(v).idx]) marked.push_back(VertexId(v));
+  return VertexCuts::merged(mesh.num_vertices(), free, fallback_cuts(mesh, marked));
 }
 
 }  // namespace
 
 LocalDual local_dual(const ClassifiedTetMesh& m, const VertexCuts& free_edge, std::span<const char> whole,
-                     std::span<const VertexId> changed, const DualParams& params, double collapse_length) {
+                     std::span<const VertexId> changed, const DualParams& params, double collapse_length,
+                     double whole_mesh_share) {
   Stopwatch w;
+  auto lap = [&](LocalDual& ld, const char* part) {
+    ld.seconds.set(part, w.seconds());
+    w = Stopwatch();
+  };
   std::vector<char> in_u;
   const std::vector<VertexId> u = closed_neighbourhood(m, changed, in_u);
-  LocalDual out{sub_mesh(m, star_tets(m, u)), {}, {}, Json::object()};
-  out.active.assign(out.sub.vertex.size(), 0);
-  for (std::size_t v = 0; v < out.sub.vertex.size(); ++v) out.active[v] = in_u[out.sub.vertex[v].idx];
-  out.seconds.set("sub_mesh", w.seconds());
-  w = Stopwatch();
-  const VertexCuts cuts = sub_cuts(m, out.sub, free_edge, whole);
-  out.seconds.set("cuts", w.seconds());
-  w = Stopwatch();
+  std::vector<TetId> tets = star_tets(m, u);
+  LocalDual out;
+  out.on_whole_mesh = double(tets.size()) > whole_mesh_share * double(m.num_tets());
+  if (out.on_whole_mesh) {
+    out.active = std::move(in_u);
+  } else {
+    out.sub = sub_mesh(m, tets);
+    out.active.assign(out.sub.vertex.size(), 0);
+    for (std::size_t v = 0; v < out.sub.vertex.size(); ++v) out.active[v] = in_u[out.sub.vertex[v].idx];
+  }
+  tets = std::vector<TetId>();
+  lap(out, "sub_mesh");
+  VertexCuts sub_free;
+  if (!out.on_whole_mesh) sub_free = sub_free_edge_cuts(m, out.sub, free_edge);
+  const VertexCuts cuts = with_whole_cuts(out, m, out.on_whole_mesh ? free_edge : sub_free, whole);
+  lap(out, "cuts");
   const DualScope scope{out.active, collapse_length};
-  out.dual = build_dual(out.sub.mesh, params, nullptr, &cuts, &scope);
-  out.seconds.set("dual", w.seconds());
+  out.dual = build_dual(out.mesh(m), params, nullptr, &cuts, &scope);
+  lap(out, "dual");
   return out;
 }
 
 LocalRound local_round(const ClassifiedTetMesh& m, const VertexCuts& free_edge, std::span<const char> whole,
-                       std::span<const VertexId> changed, const DualParams& params, double collapse_length) {
+                       std::span<const VertexId> changed, const DualParams& params, double collapse_length,
+                       double whole_mesh_share) {
   LocalRound out;
-  const LocalDual ld = local_dual(m, free_edge, whole, changed, params, collapse_length);
-  const SubMesh& s = ld.sub;
+  const LocalDual ld = local_dual(m, free_edge, whole, changed, params, collapse_length, whole_mesh_share);
+  const ClassifiedTetMesh& mesh = ld.mesh(m);
   const PolyMesh& dual = ld.dual;
   out.seconds = ld.seconds;
+  out.tets = mesh.num_tets();
+  out.on_whole_mesh = ld.on_whole_mesh;
   Stopwatch w;
-  out.tets = s.mesh.num_tets();
-  // Cells are numbered by sub-mesh vertex (every vertex of a sub-mesh has a
-  // tet, so at least one cell), then by side: a walk pairs them.
-  std::vector<std::uint32_t> cells, cell_vertex;  // tested cell -> index in s.vertex
+  // Cells are numbered by vertex (every vertex of a sub-mesh has a tet, so at
+  // least one cell; on the whole mesh a vertex without one has no active
+  // cell to find), then by side: a walk pairs them.
+  std::vector<std::uint32_t> cells, cell_vertex;  // tested cell -> its vertex in `mesh`
   for (std::size_t c = 0, v = 0; c < dual.num_cells(); ++c) {
-    while (s.mesh.input_vertex(VertexId(v)) != dual.cell_primal[c].idx) ++v;
+    while (mesh.input_vertex(VertexId(v)) != dual.cell_primal[c].idx) ++v;
     if (!ld.active[v]) continue;
     cells.push_back(std::uint32_t(c));
     cell_vertex.push_back(std::uint32_t(v));
@@ -96,11 +119,11 @@ LocalRound local_round(const ClassifiedTetMesh& m, const VertexCuts& free_edge, 
   std::vector<std::uint32_t> exact(dual.num_cells(), 0);
   star_shaped_verdicts_of(dual, cells, verdicts, exact);
   out.cells_tested = cells.size();
-  std::vector<std::uint32_t> bad(s.vertex.size(), 0);
+  std::vector<std::uint32_t> bad(mesh.num_vertices(), 0);
   for (std::size_t i = 0; i < cells.size(); ++i) bad[cell_vertex[i]] += !verdicts[cells[i]].valid;
-  for (std::size_t v = 0; v < s.vertex.size(); ++v)
+  for (std::size_t v = 0; v < mesh.num_vertices(); ++v)
     if (ld.active[v]) {
-      out.vertices.push_back(s.vertex[v]);
+      out.vertices.push_back(ld.whole_vertex(v));
       out.invalid.push_back(bad[v]);
     }
   out.seconds.set("star_test", w.seconds());

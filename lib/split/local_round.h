@@ -27,27 +27,39 @@ namespace polydual {
 // (the triangles with both tets in the sub-mesh) and the whole cuts of the
 // vertices marked in `whole` (per vertex of m). collapse_length: the whole
 // mesh's (dual_collapse_length), so the sub-mesh collapses what the whole mesh
-// does. The k-th cell of an active vertex is the k-th cell of that vertex in
-// the whole mesh's dual (proofs/split.md L5; tests/split_local_round_test.cpp).
+// does. When star(N[changed]) holds more than whole_mesh_share of m's tets,
+// m itself is used (no copy; the same scope and cuts): a copy of most of the
+// mesh costs more than it saves. Either way the k-th cell of an active vertex
+// is the k-th cell of that vertex in the whole mesh's dual (proofs/split.md
+// L5; tests/split_local_round_test.cpp).
 struct LocalDual {
-  SubMesh sub;
-  std::vector<char> active;  // per vertex of sub.mesh
+  SubMesh sub;               // empty when on_whole_mesh
+  bool on_whole_mesh = false;
+  std::vector<char> active;  // per vertex of the mesh the dual is of
   PolyMesh dual;
-  Json seconds;  // sub_mesh, cuts, dual (wall)
+  Json seconds = Json::object();  // sub_mesh, cuts, dual (wall)
+
+  // The mesh the dual is of (m or sub.mesh), and its vertex v in m's numbering.
+  const ClassifiedTetMesh& mesh(const ClassifiedTetMesh& m) const { return on_whole_mesh ? m : sub.mesh; }
+  VertexId whole_vertex(std::size_t v) const { return on_whole_mesh ? VertexId(v) : sub.vertex[v]; }
 };
+constexpr double kWholeMeshShare = 0.5;
 LocalDual local_dual(const ClassifiedTetMesh& m, const VertexCuts& free_edge, std::span<const char> whole,
-                     std::span<const VertexId> changed, const DualParams& params, double collapse_length);
+                     std::span<const VertexId> changed, const DualParams& params, double collapse_length,
+                     double whole_mesh_share = kWholeMeshShare);
 
 struct LocalRound {
   std::vector<VertexId> vertices;      // U = N[D], increasing (the whole mesh's numbering)
   std::vector<std::uint32_t> invalid;  // per vertex of U, its cells the star test found invalid
-  std::size_t tets = 0;                // of the sub-mesh
+  std::size_t tets = 0;                // of the mesh the dual is of
+  bool on_whole_mesh = false;
   std::size_t cells_tested = 0;
   Json seconds = Json::object();       // local_dual's, and star_test (wall)
 };
 
 // local_dual, then the exact star test of the active vertices' cells.
 LocalRound local_round(const ClassifiedTetMesh& m, const VertexCuts& free_edge, std::span<const char> whole,
-                       std::span<const VertexId> changed, const DualParams& params, double collapse_length);
+                       std::span<const VertexId> changed, const DualParams& params, double collapse_length,
+                       double whole_mesh_share = kWholeMeshShare);
 
 }  // namespace polydual
