@@ -356,9 +356,17 @@ TEST(CliOptions, ProgressOnStderrUnlessQuiet) {
                         " convert " + in + " -o " + out + " --max-iter 3 --quiet");
   ASSERT_EQ(quiet.code, 0) << quiet.err;
   EXPECT_EQ(quiet.err, "");
+  // The split's rounds report too (here without the optimiser, which leaves
+  // cells for the split): round, invalid cells, vertices cut whole.
+  CmdResult split = run("convert " + in + " -o " + out + " --optimize none --json 2>&1 >/dev/null | cat >&2; "
+                        "POLYDUAL_PROGRESS_DELAY=0 " POLYDUAL_BINARY " convert " + in + " -o " + out + " --optimize none");
+  ASSERT_EQ(split.code, 0) << split.err;
+  EXPECT_THAT(split.err, HasSubstr("polydual: split 1/64: invalid cells"));
+  EXPECT_THAT(split.err, HasSubstr("vertices cut whole"));
   // A short run with the default delay prints no progress at all.
   CmdResult fast = run("convert " + in + " -o " + out + " --optimize none");
   EXPECT_THAT(fast.err, Not(HasSubstr("polydual: optimize")));
+  EXPECT_THAT(fast.err, Not(HasSubstr("polydual: split")));
 }
 
 TEST(CliOptions, IgnoredEntitiesAreCountedAndWarned) {

@@ -1,6 +1,7 @@
 #include "pipeline/convert.h"
 
 #include <algorithm>
+#include <cstdio>
 
 #include "core/error.h"
 #include "core/interrupt.h"
@@ -83,6 +84,16 @@ struct SplitState {
   std::vector<CutCause> cause;
   std::vector<VertexId> internal_of_input;  // cell_primal (input numbering) -> internal
 };
+
+// A split round's progress (the command shows it when the stage runs long).
+void split_progress(const ConvertHooks& hooks, const PipelineParams& params, const Stopwatch& clock, int round,
+                    std::size_t invalid, const SplitState& st) {
+  if (!hooks.progress) return;
+  char detail[128];
+  std::snprintf(detail, sizeof detail, "invalid cells %zu, vertices cut whole %zu", invalid,
+                std::size_t(std::count(st.whole.begin(), st.whole.end(), char(1))));
+  hooks.progress(ProgressEvent{"split", round, params.split.max_rounds, clock.seconds(), detail});
+}
 
 // Marks whole the vertex of every invalid cell; false when all already were.
 bool escalate(SplitState& st, const ClassifiedTetMesh& m, const PolyMesh& mesh, const CheckResult& check) {
@@ -194,7 +205,9 @@ Json whole_build(ConvertResult& r, SplitState& st, const PipelineParams& params)
 // exactly, ends them (its record is the last of `rounds`). Returns the
 // number of local rounds run (at most params.split.max_rounds); none (and
 // r untouched) when no vertex is to be cut.
-int run_local_rounds(ConvertResult& r, SplitState& st, const PipelineParams& params, Json& rounds) {
+int run_local_rounds(ConvertResult& r, SplitState& st, const PipelineParams& params, const ConvertHooks& hooks,
+                     Json& rounds) {
+  const Stopwatch clock;
   std::vector<std::uint32_t> bad = invalid_per_vertex(st, r.mesh, r.check);
   std::vector<VertexId> raised = escalate_local(st, r.primal, bad);
   if (raised.empty()) return 0;
@@ -216,6 +229,7 @@ int run_local_rounds(ConvertResult& r, SplitState& st, const PipelineParams& par
     j.set("invalid_after", invalid);
     j.set("cells_rechecked", lr.cells_tested);
     j.set("seconds", lr.seconds);
+    split_progress(hooks, params, clock, k + 1, invalid, st);
     rounds.push(std::move(j));
     if (++k == params.split.max_rounds) break;
     raised = escalate_local(st, r.primal, bad);
@@ -269,6 +283,7 @@ std::vector<char> split_region(const ClassifiedTetMesh& m, const VertexCuts& cut
 // optimiser keeps every valid cell valid, exactly).
 void run_split(ConvertResult& r, SplitState& st, const PipelineParams& params, const ConvertHooks& hooks) {
   run_stage(r.report, hooks, "split", [&](Json& stats) {
+    const Stopwatch clock;
     Json rounds = Json::array();
     // The best mesh so far is r.mesh itself (best_is_current) or, when later
     // rounds did worse, kept apart: it is moved aside, never copied.
@@ -283,7 +298,7 @@ void run_split(ConvertResult& r, SplitState& st, const PipelineParams& params, c
       // verdicts are the whole mesh's, proofs/split.md L5), then one whole
       // build, exactly checked. T2 compares it with the first dual, which
       // (unoptimised) is rebuilt when it was no worse.
-      k0 = run_local_rounds(r, st, params, rounds);  // 0: nothing cut, r as it was
+      k0 = run_local_rounds(r, st, params, hooks, rounds);  // 0: nothing cut, r as it was
       if (k0 > 0 && r.check.invalid_cells < best_invalid) {
         best_invalid = r.check.invalid_cells;
         best_round = k0;
@@ -301,6 +316,7 @@ void run_split(ConvertResult& r, SplitState& st, const PipelineParams& params, c
       CheckResult old_check = std::move(r.check);
       VertexCuts old_cuts = std::move(st.cuts);
       rounds.push(split_round(r, old, old_check, st, params));
+      split_progress(hooks, params, clock, k + 1, r.check.invalid_cells, st);
       if (r.check.invalid_cells < best_invalid) {
         best_is_current = true;
         best_invalid = r.check.invalid_cells;
