@@ -141,7 +141,9 @@ struct OptimReport {
 // `progress` (may be empty) is called after every iteration with its record.
 // seed_cells (Local and Untangle; empty: every point, the default): the
 // smoothing starts from the points of these cells only and spreads by the
-// settling rule (a re-optimisation after a local change, e.g. the split).
+// settling rule, but moves no point farther than 3 point-sharing cell layers
+// from a seed or invalid cell (a re-optimisation after a local change, e.g.
+// the split: the rest of the mesh stays as it was).
 // known (empty: computed here): the exact star verdicts of mesh as it is, one
 // per cell (check_mesh's, pipeline/check.h), so that the optimiser does not
 // test every cell again before it starts.
