@@ -345,3 +345,49 @@ TEST(OptimSpeed, ParsersKnowTheNewNames) {
 
 }  // namespace
 }  // namespace polydual
+
+namespace polydual {
+namespace {
+
+// A seeded run (the split's re-optimisation) moves points near its seeds
+// only: every point that moved lies on a cell within 3 point-sharing layers
+// of the seed cell, and points moved (the run did work).
+TEST(OptimSpeed, SeededRunStaysWithinThreeLayersOfTheSeeds) {
+  PolyMesh m = jittered_block(12, 0.2, 41);
+  const PolyMesh before = m;
+  std::vector<char> seed(m.num_cells(), 0);
+  seed[0] = 1;
+  OptimParams p;
+  p.max_iter = 8;
+  p.polish_sweeps = 0;  // the polish visits the worst cells anywhere
+  const OptimReport r = optimize(m, nullptr, p, {}, seed);
+  // Layers by breadth-first search over shared points, independently of lib/optim.
+  const MeshStencil s = build_stencil(before);
+  std::vector<int> layer(before.num_cells(), -1);
+  std::vector<std::uint32_t> front{0}, next;
+  layer[0] = 0;
+  for (int k = 1; k <= 3; ++k) {
+    next.clear();
+    for (std::uint32_t c : front)
+      for (PointId q : s.points_of(c))
+        for (std::uint32_t d : s.cells_of(q))
+          if (layer[d] < 0) { layer[d] = k; next.push_back(d); }
+    front.swap(next);
+  }
+  std::vector<char> near_point(before.num_points(), 0);
+  for (std::uint32_t c = 0; c < layer.size(); ++c)
+    if (layer[c] >= 0)
+      for (PointId q : s.points_of(c)) near_point[q.idx] = 1;
+  std::size_t moved = 0;
+  for (std::size_t i = 0; i < m.num_points(); ++i) {
+    const bool changed = !(m.points[i] == before.points[i]);
+    moved += changed;
+    if (changed) EXPECT_TRUE(near_point[i]) << "point " << i << " moved, far from the seed";
+  }
+  EXPECT_GT(moved, 10u);
+  EXPECT_LT(moved, m.num_points() / 4);
+  EXPECT_GT(r.vertex_updates, 0u);
+}
+
+}  // namespace
+}  // namespace polydual
