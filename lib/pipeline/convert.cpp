@@ -95,20 +95,6 @@ void split_progress(const ConvertHooks& hooks, const PipelineParams& params, con
   hooks.progress(ProgressEvent{"split", round, params.split.max_rounds, clock.seconds(), detail});
 }
 
-// Marks whole the vertex of every invalid cell; false when all already were.
-bool escalate(SplitState& st, const ClassifiedTetMesh& m, const PolyMesh& mesh, const CheckResult& check) {
-  bool raised = false;
-  for (std::size_t c = 0; c < check.verdicts.size(); ++c) {
-    if (check.verdicts[c].valid) continue;
-    const VertexId v = st.internal_of_input[mesh.cell_primal[c].idx];
-    if (st.whole[v.idx]) continue;
-    st.whole[v.idx] = 1;
-    if (st.cause[v.idx] == CutCause::None) st.cause[v.idx] = invalid_cause(m, v);
-    raised = true;
-  }
-  return raised;
-}
-
 // The union of the free-edge cuts and the whole cuts of the marked vertices.
 VertexCuts union_of_cuts(const SplitState& st, const ClassifiedTetMesh& m) {
   std::vector<VertexId> whole;
@@ -161,10 +147,10 @@ std::vector<std::uint32_t> invalid_per_vertex(const SplitState& st, const PolyMe
   return bad;
 }
 
-// The vertices with an invalid cell not yet whole, now marked whole (escalate
-// on per-vertex counts), increasing.
-std::vector<VertexId> escalate_local(SplitState& st, const ClassifiedTetMesh& m,
-                                     const std::vector<std::uint32_t>& bad) {
+// The vertices with an invalid cell (bad: per vertex, its invalid cells) not
+// yet whole, now marked whole, increasing.
+std::vector<VertexId> escalate_vertices(SplitState& st, const ClassifiedTetMesh& m,
+                                        const std::vector<std::uint32_t>& bad) {
   std::vector<VertexId> raised;
   for (std::size_t v = 0; v < bad.size(); ++v) {
     if (!bad[v] || st.whole[v]) continue;
@@ -173,6 +159,11 @@ std::vector<VertexId> escalate_local(SplitState& st, const ClassifiedTetMesh& m,
     raised.push_back(VertexId(v));
   }
   return raised;
+}
+
+// Marks whole the vertex of every invalid cell; false when all already were.
+bool escalate(SplitState& st, const ClassifiedTetMesh& m, const PolyMesh& mesh, const CheckResult& check) {
+  return !escalate_vertices(st, m, invalid_per_vertex(st, mesh, check)).empty();
 }
 
 // The whole rebuild with the union of cuts and its exact check, into r.
@@ -209,7 +200,7 @@ int run_local_rounds(ConvertResult& r, SplitState& st, const PipelineParams& par
                      Json& rounds) {
   const Stopwatch clock;
   std::vector<std::uint32_t> bad = invalid_per_vertex(st, r.mesh, r.check);
-  std::vector<VertexId> raised = escalate_local(st, r.primal, bad);
+  std::vector<VertexId> raised = escalate_vertices(st, r.primal, bad);
   if (raised.empty()) return 0;
   r.mesh = PolyMesh{};  // the final build replaces it: one whole dual alive at a time
   r.check = CheckResult{};
@@ -232,7 +223,7 @@ int run_local_rounds(ConvertResult& r, SplitState& st, const PipelineParams& par
     split_progress(hooks, params, clock, k + 1, invalid, st);
     rounds.push(std::move(j));
     if (++k == params.split.max_rounds) break;
-    raised = escalate_local(st, r.primal, bad);
+    raised = escalate_vertices(st, r.primal, bad);
   }
   rounds.push(whole_build(r, st, params));
   return k;
@@ -280,7 +271,8 @@ std::vector<char> split_region(const ClassifiedTetMesh& m, const VertexCuts& cut
 // invalid) or max_rounds. The mesh with the fewest invalid cells is kept (the
 // earliest among equals), so the split never makes the result worse
 // (proofs/split.md, T2); if it is a split one it is optimised once more (the
-// optimiser keeps every valid cell valid, exactly).
+// optimiser keeps every valid cell valid, exactly), near the cuts only.
+// Without an optimiser the rounds are local first (run_local_rounds).
 void run_split(ConvertResult& r, SplitState& st, const PipelineParams& params, const ConvertHooks& hooks) {
   run_stage(r.report, hooks, "split", [&](Json& stats) {
     const Stopwatch clock;
