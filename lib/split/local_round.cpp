@@ -1,6 +1,7 @@
 #include "split/local_round.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "core/stopwatch.h"
 #include "mesh/sub_mesh.h"
@@ -110,7 +111,8 @@ LocalRound local_round(const ClassifiedTetMesh& m, const VertexCuts& free_edge, 
   // cell to find), then by side: a walk pairs them.
   std::vector<std::uint32_t> cells, cell_vertex;  // tested cell -> its vertex in `mesh`
   for (std::size_t c = 0, v = 0; c < dual.num_cells(); ++c) {
-    while (mesh.input_vertex(VertexId(v)) != dual.cell_primal[c].idx) ++v;
+    while (v < mesh.num_vertices() && mesh.input_vertex(VertexId(v)) != dual.cell_primal[c].idx) ++v;
+    if (v == mesh.num_vertices()) throw std::logic_error("local_round: cells not in vertex order");
     if (!ld.active[v]) continue;
     cells.push_back(std::uint32_t(c));
     cell_vertex.push_back(std::uint32_t(v));
