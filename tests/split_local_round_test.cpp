@@ -11,6 +11,7 @@
 #include <bit>
 
 #include "classify/classify.h"
+#include "core/error.h"
 #include "dual/build_dual.h"
 #include "generate/random_mesh.h"
 #include "pipeline/check.h"
@@ -142,6 +143,12 @@ TEST(LocalRound, CellsAndVerdictsAreThoseOfTheWholeDual) {
           ++compared;
         }
       }
+    }
+
+    if (seed == 0) {  // a scope must flag every vertex of the mesh it is given
+      const std::vector<char> short_flags(m.num_vertices() - 1, 1);
+      const DualScope bad{short_flags, collapse};
+      EXPECT_THROW(build_dual(m, dp, nullptr, &cuts, &bad), UsageError);
     }
 
     const LocalRound lr = local_round(m, fe, whole, d, dp, collapse, seed % 2 ? 1.0 : 0.0);

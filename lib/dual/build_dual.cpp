@@ -18,6 +18,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/bits.h"
+#include "core/error.h"
 #include "core/param_range.h"
 #include "core/radix_sort.h"
 #include "dual/central_points.h"
@@ -578,6 +579,9 @@ double dual_collapse_length(const ClassifiedTetMesh& m, const DualParams& params
 DualDraft build_dual_draft(const ClassifiedTetMesh& m, const DualParams& params, DualStats* stats,
                            const VertexCuts* cuts, const DualScope* scope) {
   params.validate();
+  if (scope && !scope->active.empty() && scope->active.size() != m.num_vertices())
+    throw UsageError("build_dual_draft: DualScope has " + std::to_string(scope->active.size()) +
+                     " active flags for " + std::to_string(m.num_vertices()) + " vertices");
   DualStats local;
   DualStats& st = stats ? *stats : local;
   DualDraft draft;

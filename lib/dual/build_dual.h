@@ -84,7 +84,8 @@ struct DualScope {
 // Bad cut sets (not through their vertex, on a model face, not increasing,
 // sizes wrong) throw InputError naming the mesh's source and the vertex.
 // Every point's primal entity is in mesh.point_origin (internal numbering).
-// scope (null: the whole mesh, as without it): see DualScope.
+// scope (null: the whole mesh, as without it): see DualScope; its active
+// flags, when given, are one per vertex of mesh (else UsageError).
 DualDraft build_dual_draft(const ClassifiedTetMesh& mesh, const DualParams& params = {},
                            DualStats* stats = nullptr, const VertexCuts* cuts = nullptr,
                            const DualScope* scope = nullptr);
