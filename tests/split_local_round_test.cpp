@@ -16,19 +16,10 @@
 #include "generate/random_mesh.h"
 #include "pipeline/check.h"
 #include "split/cuts.h"
+#include "split_random_meshes.h"
 
 namespace polydual {
 namespace {
-
-RandomMeshParams params_of(std::uint64_t seed) {
-  RandomMeshParams p;
-  p.seed = seed;
-  p.num_points = 40 + int(seed % 5) * 30;
-  p.fracture = seed % 4 != 0;
-  p.crossing_sheet = seed % 4 == 2;
-  p.regions = seed % 3 == 0 ? 2 : 1;
-  return p;
-}
 
 bool same_bits(const Point3& a, const Point3& b) {
   return std::bit_cast<std::uint64_t>(a.x) == std::bit_cast<std::uint64_t>(b.x) &&
@@ -64,7 +55,7 @@ bool same_geometry(const PolyMesh& a, CellId c, const PolyMesh& b, CellId d) {
 
 TEST(SubMesh, CarriesTheClassification) {
   for (std::uint64_t seed = 0; seed < 12; ++seed) {
-    const ClassifiedTetMesh m = classify(random_classified_mesh(params_of(seed)));
+    const ClassifiedTetMesh m = classify(random_classified_mesh(split_test_mesh_params(seed)));
     std::vector<VertexId> some;
     for (std::size_t v = 0; v < m.num_vertices(); v += 4) some.push_back(VertexId(v));
     const std::vector<TetId> tets = star_tets(m, some);
@@ -104,7 +95,7 @@ TEST(LocalRound, CellsAndVerdictsAreThoseOfTheWholeDual) {
   std::size_t compared = 0, invalid_seen = 0, changed_verdicts = 0;
   for (std::uint64_t seed = 0; seed < 40; ++seed) {
     const std::string what = "seed " + std::to_string(seed);
-    const ClassifiedTetMesh m = classify(random_classified_mesh(params_of(seed)));
+    const ClassifiedTetMesh m = classify(random_classified_mesh(split_test_mesh_params(seed)));
     const DualParams dp;
     const VertexCuts fe = free_edge_cuts(m);
     const PolyMesh first = build_dual(m, dp, nullptr, &fe);

@@ -15,6 +15,7 @@
 #include "generate/random_mesh.h"
 #include "split/cuts.h"
 #include "split/warm_start.h"
+#include "split_random_meshes.h"
 
 namespace polydual {
 namespace {
@@ -103,13 +104,7 @@ void run_mesh(const TetSoup& soup, const std::string& what, Tally& tally) {
 TEST(SplitRecheck, RandomMeshesSameVerdictsAsFullCheck) {
   Tally tally;
   for (std::uint64_t seed = 0; seed < 40; ++seed) {
-    RandomMeshParams p;
-    p.seed = seed;
-    p.num_points = 40 + int(seed % 5) * 30;
-    p.fracture = seed % 4 != 0;
-    p.crossing_sheet = seed % 4 == 2;
-    p.regions = seed % 3 == 0 ? 2 : 1;
-    run_mesh(random_classified_mesh(p), "seed " + std::to_string(seed), tally);
+    run_mesh(random_classified_mesh(split_test_mesh_params(seed)), "seed " + std::to_string(seed), tally);
     if (HasFailure()) break;
   }
   EXPECT_EQ(tally.rounds, 120u);

@@ -85,22 +85,21 @@ struct SplitState {
   std::vector<VertexId> internal_of_input;  // cell_primal (input numbering) -> internal
 };
 
+std::size_t num_whole(const SplitState& st) { return std::size_t(std::count(st.whole.begin(), st.whole.end(), char(1))); }
+
 // A split round's progress (the command shows it when the stage runs long).
 void split_progress(const ConvertHooks& hooks, const PipelineParams& params, const Stopwatch& clock, int round,
                     std::size_t invalid, const SplitState& st) {
   if (!hooks.progress) return;
   char detail[128];
   std::snprintf(detail, sizeof detail, "invalid cells %zu, vertices cut whole %zu", invalid,
-                std::size_t(std::count(st.whole.begin(), st.whole.end(), char(1))));
+                num_whole(st));
   hooks.progress(ProgressEvent{"split", round, params.split.max_rounds, clock.seconds(), detail});
 }
 
 // The union of the free-edge cuts and the whole cuts of the marked vertices.
 VertexCuts union_of_cuts(const SplitState& st, const ClassifiedTetMesh& m) {
-  std::vector<VertexId> whole;
-  for (std::size_t v = 0; v < st.whole.size(); ++v)
-    if (st.whole[v]) whole.push_back(VertexId(v));
-  return VertexCuts::merged(m.num_vertices(), st.free_edge, fallback_cuts(m, whole));
+  return with_whole_cuts(m, st.free_edge, st.whole);
 }
 
 // One round: rebuild with the union of cuts, the points not pinned by a whole
@@ -124,7 +123,7 @@ Json split_round(ConvertResult& r, const PolyMesh& old, const CheckResult& old_c
   sec.set("dual_parts", ds.to_json());
   Json j = Json::object();
   j.set("local", false);
-  j.set("vertices_whole", std::size_t(std::count(st.whole.begin(), st.whole.end(), char(1))));
+  j.set("vertices_whole", num_whole(st));
   j.set("cells", fresh.num_cells());
   std::vector<PointId> from_old;
   j.set("points_warm_started", warm_start(fresh, old, r.primal, st.cuts, &from_old));
@@ -182,7 +181,7 @@ Json whole_build(ConvertResult& r, SplitState& st, const PipelineParams& params)
   sec.set("star_test", w.seconds());
   Json j = Json::object();
   j.set("local", false);
-  j.set("vertices_whole", std::size_t(std::count(st.whole.begin(), st.whole.end(), char(1))));
+  j.set("vertices_whole", num_whole(st));
   j.set("cells", r.mesh.num_cells());
   j.set("invalid_after", r.check.invalid_cells);
   j.set("cells_rechecked", r.mesh.num_cells());
@@ -214,7 +213,7 @@ int run_local_rounds(ConvertResult& r, SplitState& st, const PipelineParams& par
     for (std::uint32_t b : bad) invalid += b;
     Json j = Json::object();
     j.set("local", true);
-    j.set("vertices_whole", std::size_t(std::count(st.whole.begin(), st.whole.end(), char(1))));
+    j.set("vertices_whole", num_whole(st));
     j.set("on_whole_mesh", lr.on_whole_mesh);
     j.set("tets", lr.tets);
     j.set("invalid_after", invalid);

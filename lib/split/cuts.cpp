@@ -324,6 +324,13 @@ VertexCuts fallback_cuts(const ClassifiedTetMesh& m, std::span<const VertexId> v
   return c;
 }
 
+VertexCuts with_whole_cuts(const ClassifiedTetMesh& m, const VertexCuts& free, std::span<const char> whole) {
+  std::vector<VertexId> marked;
+  for (std::size_t v = 0; v < whole.size(); ++v)
+    if (whole[v]) marked.push_back(VertexId(v));
+  return VertexCuts::merged(m.num_vertices(), free, fallback_cuts(m, marked));
+}
+
 CutCause invalid_cause(const ClassifiedTetMesh& m, VertexId v) {
   const int dim = m.vertex_class(v).dim;
   if (dim == 0) return CutCause::ConcaveVertex;

@@ -50,6 +50,10 @@ VertexCuts plane_cuts(const ClassifiedTetMesh& m, std::span<const VertexId> vert
 // split loop's certificate.
 VertexCuts fallback_cuts(const ClassifiedTetMesh& m, std::span<const VertexId> vertices);
 
+// free merged with fallback_cuts of the vertices marked in `whole` (one flag
+// per vertex of m): the cuts of a split round.
+VertexCuts with_whole_cuts(const ClassifiedTetMesh& m, const VertexCuts& free, std::span<const char> whole);
+
 // The cause of an invalid cell of v that has no free-edge cut, by v's class:
 // model vertex -> ConcaveVertex; model edge -> SheetCrossing when >= 3 model
 // faces (distinct tags of model-face triangles) meet at v, else ConcaveEdge;

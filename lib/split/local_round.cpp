@@ -52,13 +52,12 @@ VertexCuts sub_free_edge_cuts(const ClassifiedTetMesh& m, const SubMesh& s, cons
 
 // The cuts of ld's mesh: `free` (its free-edge cuts) and the whole cuts of
 // the vertices marked in `whole` (m's numbering).
-VertexCuts with_whole_cuts(const LocalDual& ld, const ClassifiedTetMesh& m, const VertexCuts& free,
-                           std::span<const char> whole) {
-  const ClassifiedTetMesh& mesh = ld.mesh(m);
-  std::vector<VertexId> marked;
-  for (std::size_t v = 0; v < mesh.num_vertices(); ++v)
-    if (whole[ld.whole_vertex(v).idx]) marked.push_back(VertexId(v));
-  return VertexCuts::merged(mesh.num_vertices(), free, fallback_cuts(mesh, marked));
+VertexCuts local_cuts(const LocalDual& ld, const ClassifiedTetMesh& m, const VertexCuts& free,
+                      std::span<const char> whole) {
+  if (ld.on_whole_mesh) return with_whole_cuts(m, free, whole);
+  std::vector<char> here(ld.sub.vertex.size());
+  for (std::size_t v = 0; v < here.size(); ++v) here[v] = whole[ld.sub.vertex[v].idx];
+  return with_whole_cuts(ld.sub.mesh, free, here);
 }
 
 }  // namespace
@@ -87,7 +86,7 @@ LocalDual local_dual(const ClassifiedTetMesh& m, const VertexCuts& free_edge, st
   lap(out, "sub_mesh");
   VertexCuts sub_free;
   if (!out.on_whole_mesh) sub_free = sub_free_edge_cuts(m, out.sub, free_edge);
-  const VertexCuts cuts = with_whole_cuts(out, m, out.on_whole_mesh ? free_edge : sub_free, whole);
+  const VertexCuts cuts = local_cuts(out, m, out.on_whole_mesh ? free_edge : sub_free, whole);
   lap(out, "cuts");
   const DualScope scope{out.active, collapse_length};
   out.dual = build_dual(out.mesh(m), params, nullptr, &cuts, &scope);
@@ -118,8 +117,7 @@ LocalRound local_round(const ClassifiedTetMesh& m, const VertexCuts& free_edge, 
     cell_vertex.push_back(std::uint32_t(v));
   }
   std::vector<CellVerdict> verdicts(dual.num_cells());
-  std::vector<std::uint32_t> exact(dual.num_cells(), 0);
-  star_shaped_verdicts_of(dual, cells, verdicts, exact);
+  star_shaped_verdicts_of(dual, cells, verdicts, {});  // exact-fallback counts not needed
   out.cells_tested = cells.size();
   std::vector<std::uint32_t> bad(mesh.num_vertices(), 0);
   for (std::size_t i = 0; i < cells.size(); ++i) bad[cell_vertex[i]] += !verdicts[cells[i]].valid;
