@@ -10,6 +10,7 @@
 
 #include "generate/hex_block.h"
 #include "mesh/poly_mesh.h"
+#include "predicates/predicates.h"
 #include "quality/corner.h"
 #include "quality/metrics.h"
 #include "quality/star_verdict.h"
@@ -88,6 +89,30 @@ TEST(StarTest, StencilAndMeshVerdictsAgree) {
   }
   EXPECT_GT(invalid, 0);
   EXPECT_EQ(count_invalid_cells(s, m.points), static_cast<std::size_t>(invalid));
+}
+
+// The stencil's verdict decides most tets with the inline summed filter; where
+// it cannot, the exact fallback must give the answer. A cube flattened to
+// height 1e-300 is valid, but every tet's permanent is below the filter's
+// range (all 24 go exact); a cube flattened to height 0 is invalid everywhere.
+TEST(StarTest, StencilVerdictIsExactWhereTheSummedFilterCannotDecide) {
+  const auto exact_now = [] { return predicate_counters().star_exact.load(); };
+  std::vector<Point3> scratch;
+  PolyMesh thin = hex_block(1);
+  for (auto& p : thin.points) p.z *= 1e-300;
+  const MeshStencil s = build_stencil(thin);
+  const auto e0 = exact_now();
+  const CellVerdict v = star_shaped_verdict(s, 0, thin.points, false, scratch);
+  EXPECT_TRUE(v.valid);
+  EXPECT_EQ(v.bad_tets, 0);
+  EXPECT_EQ(v.total_tets, 24);
+  EXPECT_GE(exact_now() - e0, 24u);
+  PolyMesh flat = hex_block(1);
+  for (auto& p : flat.points) p.z = 0;
+  const CellVerdict f = star_shaped_verdict(s, 0, flat.points, false, scratch);
+  EXPECT_FALSE(f.valid);
+  EXPECT_EQ(f.bad_tets, 24);
+  EXPECT_EQ(star_shaped_verdict(flat, CellId(0)).bad_tets, 24);
 }
 
 TEST(Corner, RightUnitCornerIsThree) {

@@ -81,4 +81,37 @@ inline Sign insphere(const Point3& a, const Point3& b, const Point3& c, const Po
   return s != Sign::Zero ? s : detail::insphere_exact(a, b, c, d, e);
 }
 
+// The summed filter of decomposition_tet_sign(a, b, face, cell, fs, cs)
+// (proofs/star_filter.md, L9d), inline for the star test's per-tet loop: the
+// EXACT sign when the filter decides, Sign::Zero when it cannot (the caller
+// then runs the exact decomposition_tet_sign(a, b, face, cell); Zero is never
+// returned as a decided sign). With o the sums' origin and e = fl(a - o),
+// s~ = fs.s - k e and t~ = cs.s - m e approximate s = sum(p - a) and
+// t = sum(q - a) within (k + 4) eps Sabs and (m + 4) eps Tabs, where
+// Sabs = fs.abs + k|e| and Tabs = cs.abs + m|e| bound |s|, |t| (per
+// coordinate, up to 1 + (n + 2) eps). det~ = u~.(s~ x t~) then differs from
+// the exact det by at most (k + m + 16) eps P, P = |u~|.(Sabs x Tabs); the
+// bound takes twice that (and 1 + 1e-6 for the rounding of P).
+inline Sign decomposition_tet_sign_if_certain(const Point3& a, const Point3& b, const PointSums& fs,
+                                              const PointSums& cs) {
+  const double ex = a.x - fs.origin.x, ey = a.y - fs.origin.y, ez = a.z - fs.origin.z;
+  const double k = double(fs.n), m = double(cs.n);
+  const double sx = fs.sx - k * ex, sy = fs.sy - k * ey, sz = fs.sz - k * ez;
+  const double tx = cs.sx - m * ex, ty = cs.sy - m * ey, tz = cs.sz - m * ez;
+  const double aex = std::fabs(ex), aey = std::fabs(ey), aez = std::fabs(ez);
+  const double asx = fs.ax + k * aex, asy = fs.ay + k * aey, asz = fs.az + k * aez;
+  const double atx = cs.ax + m * aex, aty = cs.ay + m * aey, atz = cs.az + m * aez;
+  const double ux = b.x - a.x, uy = b.y - a.y, uz = b.z - a.z;
+  const double det = ux * (sy * tz - sz * ty) + uy * (sz * tx - sx * tz) + uz * (sx * ty - sy * tx);
+  const double perm = std::fabs(ux) * (asy * atz + asz * aty) + std::fabs(uy) * (asz * atx + asx * atz) +
+                      std::fabs(uz) * (asx * aty + asy * atx);
+  constexpr double eps = DBL_EPSILON / 2;
+  const double bound = 2.0 * (k + m + 16.0) * eps * perm * (1.0 + 1e-6);
+  // Below ~1e-250 (or not finite) the bound could be spoiled: undecided.
+  if (!(perm > 1e-250 && perm <= DBL_MAX)) return Sign::Zero;
+  if (det > bound) return Sign::Negative;  // det > 0  ->  vol(R,a,b,F) < 0
+  if (det < -bound) return Sign::Positive;
+  return Sign::Zero;
+}
+
 }  // namespace polydual

@@ -5,33 +5,63 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
+#include <cmath>
+
 #include "predicates/predicates.h"
 
 namespace polydual {
 
+namespace {
+
+// The sums of the listed points about origin o (point_sums on indices: no copy).
+PointSums point_sums_of(std::span<const PointId> ids, std::span<const Point3> points, const Point3& o) {
+  PointSums r;
+  r.origin = o;
+  r.n = ids.size();
+  for (PointId q : ids) {
+    const Point3& p = points[q.idx];
+    const double dx = p.x - o.x, dy = p.y - o.y, dz = p.z - o.z;
+    r.sx += dx; r.sy += dy; r.sz += dz;
+    r.ax += std::fabs(dx); r.ay += std::fabs(dy); r.az += std::fabs(dz);
+  }
+  return r;
+}
+
+// The exact sign of one decomposition tet the summed filter left undecided:
+// the cell's and the face's points copied into scratch for the per-tet filter
+// and the exact fallback (rare).
+Sign undecided_tet_sign(const MeshStencil& s, std::uint32_t c, std::span<const PointId> loop, std::size_t i,
+                        std::span<const Point3> points, std::vector<Point3>& scratch) {
+  scratch.clear();
+  for (PointId q : s.points_of(c)) scratch.push_back(points[q.idx]);
+  const std::size_t m = scratch.size();
+  for (PointId q : loop) scratch.push_back(points[q.idx]);
+  const std::span<const Point3> cell(scratch.data(), m), face(scratch.data() + m, loop.size());
+  return decomposition_tet_sign(face[i], face[(i + 1) % loop.size()], face, cell);
+}
+
+}  // namespace
+
 CellVerdict star_shaped_verdict(const MeshStencil& s, std::uint32_t c,
                                 std::span<const Point3> points, bool stop_at_first_bad,
                                 std::vector<Point3>& scratch) {
-  // scratch = [cell points | current face points].
+  // The summed filter decides almost every tet from the cell's and the face's
+  // sums, read straight from the points; the rest go exact.
   const auto cp = s.points_of(c);
-  scratch.clear();
-  for (PointId p : cp) scratch.push_back(points[p.idx]);
-  const std::size_t m = scratch.size();
   CellVerdict v;
-  if (m == 0) return v;
-  const PointSums cs = point_sums({scratch.data(), m}, scratch[0]);
+  if (cp.empty()) return v;
+  const PointSums cs = point_sums_of(cp, points, points[cp[0].idx]);
   for (std::uint32_t j = s.cell_loop_off[c]; j < s.cell_loop_off[c + 1]; ++j) {
     const auto loop = s.loop(j);
-    scratch.resize(m);
-    for (PointId p : loop) scratch.push_back(points[p.idx]);
-    const std::span<const Point3> cell(scratch.data(), m);
-    const std::span<const Point3> face(scratch.data() + m, loop.size());
-    const PointSums fs = point_sums(face, cs.origin);
-    for (std::size_t i = 0; i < loop.size(); ++i) {
-      const Point3& a = face[i];
-      const Point3& b = face[(i + 1) % loop.size()];
+    const std::size_t k = loop.size();
+    const PointSums fs = point_sums_of(loop, points, cs.origin);
+    for (std::size_t i = 0; i < k; ++i) {
+      const Point3& a = points[loop[i].idx];
+      const Point3& b = points[loop[i + 1 == k ? 0 : i + 1].idx];
       ++v.total_tets;
-      if (decomposition_tet_sign(a, b, face, cell, fs, cs) != Sign::Positive) {
+      Sign sg = decomposition_tet_sign_if_certain(a, b, fs, cs);
+      if (sg == Sign::Zero) sg = undecided_tet_sign(s, c, loop, i, points, scratch);
+      if (sg != Sign::Positive) {
         v.valid = false;
         ++v.bad_tets;
         if (stop_at_first_bad) return v;
