@@ -305,14 +305,6 @@ PointSums point_sums(std::span<const Point3> pts, const Point3& origin) {
   return r;
 }
 
-Sign decomposition_tet_sign(const Point3& a, const Point3& b, std::span<const Point3> face,
-                            std::span<const Point3> cell, const PointSums& fs, const PointSums& cs) {
-  // The summed filter (predicates_inline.h), then on doubt the per-tet
-  // filter and the exact fallback.
-  const Sign s = decomposition_tet_sign_if_certain(a, b, fs, cs);
-  return s != Sign::Zero ? s : decomposition_tet_sign(a, b, face, cell);
-}
-
 Sign decomposition_tet_sign_inexact(const Point3& a, const Point3& b, std::span<const Point3> face,
                                     std::span<const Point3> cell) {
   const double d = star_det<double>(a, b, face, cell);

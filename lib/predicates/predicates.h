@@ -70,8 +70,8 @@ PointSums point_sums(std::span<const Point3> pts, const Point3& origin);
 // static filter from the sums (fs of face, cs of cell, both about one origin;
 // proofs/star_filter.md, L9d), then on doubt decomposition_tet_sign itself
 // (its own filter, then exact).
-Sign decomposition_tet_sign(const Point3& a, const Point3& b, std::span<const Point3> face,
-                            std::span<const Point3> cell, const PointSums& fs, const PointSums& cs);
+inline Sign decomposition_tet_sign(const Point3& a, const Point3& b, std::span<const Point3> face,
+                                   std::span<const Point3> cell, const PointSums& fs, const PointSums& cs);
 
 // The same expression in plain doubles: NOT exact. For benchmarks and for the
 // adversarial tests that show why the exact version exists.

@@ -114,4 +114,11 @@ inline Sign decomposition_tet_sign_if_certain(const Point3& a, const Point3& b, 
   return Sign::Zero;
 }
 
+inline Sign decomposition_tet_sign(const Point3& a, const Point3& b, std::span<const Point3> face,
+                                   std::span<const Point3> cell, const PointSums& fs, const PointSums& cs) {
+  // The summed filter, then on doubt the per-tet filter and the exact fallback.
+  const Sign s = decomposition_tet_sign_if_certain(a, b, fs, cs);
+  return s != Sign::Zero ? s : decomposition_tet_sign(a, b, face, cell);
+}
+
 }  // namespace polydual
