@@ -369,8 +369,15 @@ TEST(Optim, UntanglingSweepsVisitOnlyTheTangledNeighbourhood) {
   EXPECT_EQ(r.invalid_after, 0);
   EXPECT_GT(r.iterations[1].visited, 0u);
   EXPECT_LE(r.iterations[1].visited, tangled_pts.size());
-  EXPECT_EQ(r.iterations[1].invalid, 0u);
-  EXPECT_EQ(r.iterations[2].visited, 5u * 5u * 5u);  // first smoothing sweep: every free point
+  // The first sweep (lagged model) and at most one more (full model, the
+  // tangled neighbourhood only) untangle; then the first smoothing sweep
+  // visits every free point.
+  std::size_t valid_at = 1;
+  while (valid_at < r.iterations.size() && r.iterations[valid_at].invalid > 0) ++valid_at;
+  ASSERT_LE(valid_at, 2u);
+  EXPECT_LE(r.iterations[valid_at].visited, tangled_pts.size() * 4);
+  ASSERT_GT(r.iterations.size(), valid_at + 1);
+  EXPECT_EQ(r.iterations[valid_at + 1].visited, 5u * 5u * 5u);
   // The paper's order (untangle_sweeps = 0) also untangles.
   PolyMesh m2 = hex_block(6);
   m2.points[(2 * 7 + 2) * 7 + 2] = {3.4, 2.2, 1.8};

@@ -386,9 +386,16 @@ IterationRecord& record_sweep(Context& ctx, int sweep, const IterationRecord& co
 // the worst cell worse. Only the cells around the polished points get their
 // qualities and centre gradients refreshed; the phase ends with one record.
 constexpr double kPolishTol = 1e-5;
-// Corrected derivatives: the points of cells above kFullModelRatio x the mean
-// quality use the full analytic model (VertexNewton::model_of).
-constexpr double kFullModelRatio = 1.2;
+// Corrected derivatives: from the second smoothing sweep on, the points of
+// cells above kFullModelRatio x the mean quality use the full analytic model
+// (VertexNewton::model_of); in the polish, the points of cells above
+// mean + kPolishFullModelShare x (max - mean). The first smoothing sweep
+// uses the corrected model everywhere: after the lagged untangling sweep it
+// starts from a mild state, and the few cells it leaves badly shaped are
+// what the later full-model visits and the polish repair (bench/README.md,
+// "The full model where it pays").
+constexpr double kFullModelRatio = 1.3;
+constexpr double kPolishFullModelShare = 0.8;
 
 void polish_worst(Context& ctx, const ColourClasses (&passes)[2], tbb::enumerable_thread_specific<VertexNewton>& solvers,
                   int sweep, std::vector<int>& last_change) {
@@ -419,6 +426,7 @@ void polish_worst(Context& ctx, const ColourClasses (&passes)[2], tbb::enumerabl
       return false;
     };
     IterationRecord one;
+    ctx.full_model_above = ctx.last_stats.mean + kPolishFullModelShare * (ctx.last_stats.max - ctx.last_stats.mean);
     sweep_points(ctx, passes, solvers, sweep + ++k, last_change, active, one);
     counts.visited += one.visited;
     counts.updates += one.updates;
@@ -513,6 +521,9 @@ void run_local(Context& ctx) {
   std::vector<char> near_invalid;
   std::size_t fewest_invalid = ctx.report->iterations.back().invalid;
   int stalled = 0;  // untangling sweeps since the invalid count last dropped
+  // No smoothing sweep has run yet (a seeded run's cells around the cuts are
+  // badly shaped from the start: the full model from its first sweep).
+  bool first_smoothing = !seeded;
   int sweep = 1;
   for (; sweep <= prm.max_iter; ++sweep) {
     const bool untangling = untangle_left > 0;
@@ -526,13 +537,12 @@ void run_local(Context& ctx) {
     // fastest at any cost to its valid neighbours, as the full model does
     // (proofs/quality.md §7). The later untangling sweeps, over the few cells
     // it left, use the full model: it untangles what the lagged one cannot.
-    // Method::Untangle only: before smoothing, the full model's first sweep
-    // costs less in total (the first smoothing sweep repairs its damage on the
-    // cheap model, while from the lagged sweep's milder state more points go
-    // to the full model; 100k: 4-15% slower, bench/README.md).
-    ctx.lagged_untangling = untangle_only && sweep == 1;
+    // The first smoothing sweep then uses no full model (kFullModelRatio).
+    ctx.lagged_untangling = untangling && sweep == 1;
     ctx.full_model_above = untangling ? -std::numeric_limits<double>::infinity()
-                                      : kFullModelRatio * ctx.last_stats.mean;
+                           : first_smoothing ? std::numeric_limits<double>::infinity()
+                                             : kFullModelRatio * ctx.last_stats.mean;
+    first_smoothing = first_smoothing && untangling;
     // Untangling: rings grow by one cell layer per sweep (changes of the
     // previous sweep only); smoothing: changes of this or the previous sweep.
     const int since = sweep - 1;
