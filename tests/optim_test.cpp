@@ -316,6 +316,30 @@ TEST(Optim, DeterministicAcrossRuns) {
   }
 }
 
+// The sweeps run blocks of 256 consecutive points, the blocks of one colour
+// in parallel: on a block with 15^3 free points (14 blocks, fewer colours, so
+// some colour holds several blocks) one and two threads give the same points
+// bit for bit with the default scheme.
+TEST(Optim, BlockSweepsAreIdenticalForOneAndTwoThreads) {
+  const PolyMesh start = perturbed_block(16, 0.3, 7);
+  OptimParams p;
+  p.max_iter = 3;
+  PolyMesh a = start, b = start;
+  OptimReport ra, rb;
+  {
+    tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+    ra = optimize(a, nullptr, p);
+  }
+  {
+    tbb::global_control two(tbb::global_control::max_allowed_parallelism, 2);
+    rb = optimize(b, nullptr, p);
+  }
+  EXPECT_GT(ra.vertex_updates, 3000u);
+  EXPECT_LT(ra.colours, 14u) << "some colour must hold several blocks";
+  EXPECT_EQ(a.points, b.points);
+  EXPECT_EQ(ra.vertex_updates, rb.vertex_updates);
+}
+
 TEST(Optim, ColouredSweepsAreIdenticalForOneAndTwoThreads) {
   // Parallel Gauss-Seidel over independent point sets: the result depends on the
   // colouring only, never on the thread count (default derivatives and fd).

@@ -283,45 +283,84 @@ class VertexNewton {
   PlanarityTerm planarity_;  // the loops around the visited point (planarity > 0)
 };
 
-// Independent sets for a parallel Gauss-Seidel: the points of one pass (surface
-// or volume) are greedily coloured in index order so that two points of one
-// colour never share a cell. A point's update reads and writes only its own
-// cells (positions of their points, validity flags, change stamps) and its own
-// boundary primitive, so the points of one colour can move concurrently and the
-// result is the same as visiting them one by one in any order: it depends on the
-// colouring only, never on the thread count or the scheduling.
+// Independent blocks for a parallel Gauss-Seidel: the points of one pass
+// (surface or volume) are cut, in index order, into blocks of kBlockPoints
+// consecutive points (the dual's points follow the tets' spatial order, so a
+// block is a compact piece of the mesh), and the blocks are greedily coloured
+// in index order so that no cell holds points of two blocks of one colour.
+// A block's points are visited one after the other in index order (a plain
+// Gauss-Seidel, whose working set stays in cache); the blocks of one colour
+// run in parallel. A point's update reads and writes only its own cells
+// (positions of their points, validity flags, change stamps) and its own
+// boundary primitive, so the blocks of one colour never touch the same data
+// and the result is that of visiting them one by one in any order: it depends
+// on the blocks and their colours only, never on the thread count or the
+// scheduling (proofs/quality.md §7).
+constexpr std::uint32_t kBlockPoints = 256;
+
 struct ColourClasses {
-  std::vector<std::uint32_t> points;      // grouped by colour, increasing within a colour
-  std::vector<std::uint32_t> colour_off{0};
+  std::vector<std::uint32_t> points;      // by colour, then block; increasing within a block
+  std::vector<std::uint32_t> block_off{0};   // block b is points[block_off[b] .. block_off[b+1])
+  std::vector<std::uint32_t> colour_off{0};  // colour c is blocks [colour_off[c], colour_off[c+1])
 };
 
 ColourClasses colour_points(const Context& ctx, bool surface) {
   const std::size_t np = ctx.mesh.num_points();
-  constexpr std::uint32_t kUncoloured = UINT32_MAX;
-  std::vector<std::uint32_t> colour(np, kUncoloured);
-  std::vector<std::uint32_t> stamp;  // stamp[c] == p + 1: colour c is taken by a neighbour of p
-  std::uint32_t ncolours = 0;
+  constexpr std::uint32_t kNone = UINT32_MAX;
+  // Blocks of consecutive eligible points.
+  std::vector<std::uint32_t> block(np, kNone);
+  std::uint32_t nb = 0, in_block = 0;
   for (std::size_t i = 0; i < np; ++i) {
     const int k = ctx.dof[i];
     if (k == 0 || surface != (k < 3)) continue;
-    const PointId p(i);
-    for (std::uint32_t c : ctx.stencil.cells_of(p))
-      for (PointId q : ctx.stencil.points_of(c))
-        if (colour[q.idx] != kUncoloured) stamp[colour[q.idx]] = static_cast<std::uint32_t>(i + 1);
-    std::uint32_t col = 0;
-    while (col < ncolours && stamp[col] == i + 1) ++col;
-    if (col == ncolours) { ++ncolours; stamp.push_back(0); }
-    colour[i] = col;
+    if (in_block == 0) ++nb;
+    block[i] = nb - 1;
+    in_block = (in_block + 1) % kBlockPoints;
   }
+  // Blocks sharing a cell are neighbours (sorted, distinct lists).
+  std::vector<std::vector<std::uint32_t>> nbrs(nb);
+  std::vector<std::uint32_t> in_cell;
+  for (std::uint32_t c = 0; c < ctx.stencil.num_cells(); ++c) {
+    in_cell.clear();
+    for (PointId q : ctx.stencil.points_of(c))
+      if (block[q.idx] != kNone) in_cell.push_back(block[q.idx]);
+    std::sort(in_cell.begin(), in_cell.end());
+    in_cell.erase(std::unique(in_cell.begin(), in_cell.end()), in_cell.end());
+    for (std::uint32_t a : in_cell)
+      for (std::uint32_t b : in_cell)
+        if (a != b) nbrs[a].push_back(b);
+  }
+  // Greedy colouring of the blocks in index order.
+  std::vector<std::uint32_t> colour(nb, kNone), stamp;
+  std::uint32_t ncolours = 0;
+  for (std::uint32_t b = 0; b < nb; ++b) {
+    for (std::uint32_t n : nbrs[b])
+      if (colour[n] != kNone) stamp[colour[n]] = b + 1;
+    std::uint32_t col = 0;
+    while (col < ncolours && stamp[col] == b + 1) ++col;
+    if (col == ncolours) { ++ncolours; stamp.push_back(0); }
+    colour[b] = col;
+  }
+  // Blocks grouped by colour (increasing within a colour), points by block.
   ColourClasses cc;
+  std::vector<std::uint32_t> order(nb);
+  for (std::uint32_t b = 0; b < nb; ++b) order[b] = b;
+  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return colour[a] < colour[b]; });
+  std::vector<std::uint32_t> first(nb + 1, 0);  // block b's points in index order
+  for (std::size_t i = 0; i < np; ++i)
+    if (block[i] != kNone) ++first[block[i] + 1];
+  for (std::uint32_t b = 0; b < nb; ++b) first[b + 1] += first[b];
+  std::vector<std::uint32_t> by_block(first.back());
+  std::vector<std::uint32_t> fill(first.begin(), first.end() - 1);
+  for (std::size_t i = 0; i < np; ++i)
+    if (block[i] != kNone) by_block[fill[block[i]]++] = static_cast<std::uint32_t>(i);
   cc.colour_off.assign(ncolours + 1, 0);
-  for (std::size_t i = 0; i < np; ++i)
-    if (colour[i] != kUncoloured) ++cc.colour_off[colour[i] + 1];
+  for (std::uint32_t b = 0; b < nb; ++b) ++cc.colour_off[colour[b] + 1];
   for (std::uint32_t c = 0; c < ncolours; ++c) cc.colour_off[c + 1] += cc.colour_off[c];
-  cc.points.resize(cc.colour_off.back());
-  std::vector<std::uint32_t> fill(cc.colour_off.begin(), cc.colour_off.end() - 1);
-  for (std::size_t i = 0; i < np; ++i)
-    if (colour[i] != kUncoloured) cc.points[fill[colour[i]]++] = static_cast<std::uint32_t>(i);
+  for (std::uint32_t b : order) {
+    cc.points.insert(cc.points.end(), by_block.begin() + first[b], by_block.begin() + first[b + 1]);
+    cc.block_off.push_back(static_cast<std::uint32_t>(cc.points.size()));
+  }
   return cc;
 }
 
@@ -336,10 +375,10 @@ void sweep_points(Context& ctx, const ColourClasses (&passes)[2], tbb::enumerabl
   for (const ColourClasses& cc : passes) {
     for (std::size_t col = 0; col + 1 < cc.colour_off.size(); ++col) {
       const std::uint32_t b = cc.colour_off[col], e = cc.colour_off[col + 1];
-      tbb::parallel_for(tbb::blocked_range<std::uint32_t>(b, e, 4), [&](const auto& r) {
+      tbb::parallel_for(tbb::blocked_range<std::uint32_t>(b, e, 1), [&](const auto& r) {
         VertexNewton& solver = solvers.local();
         std::uint64_t n_upd = 0, n_vis = 0, n_full = 0;
-        for (std::uint32_t a = r.begin(); a != r.end(); ++a) {
+        for (std::uint32_t a = cc.block_off[r.begin()]; a != cc.block_off[r.end()]; ++a) {
           const PointId p(cc.points[a]);
           if (!active(p)) continue;
           ++n_vis;
