@@ -317,7 +317,8 @@ ColourClasses colour_points(const Context& ctx, bool surface) {
     block[i] = nb - 1;
     in_block = (in_block + 1) % kBlockPoints;
   }
-  // Blocks sharing a cell are neighbours (sorted, distinct lists).
+  // Blocks sharing a cell are neighbours (a block may be listed more than
+  // once: the colouring below only stamps them).
   std::vector<std::vector<std::uint32_t>> nbrs(nb);
   std::vector<std::uint32_t> in_cell;
   for (std::uint32_t c = 0; c < ctx.stencil.num_cells(); ++c) {
