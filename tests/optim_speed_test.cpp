@@ -297,6 +297,18 @@ TEST(OptimSpeed, UntanglingStopsWhenTheInvalidCountStalls) {
   EXPECT_LT(r.iterations.size() - 1, 20u);
 }
 
+// The raw dual (no split, no optimiser) of a 400-point random classified
+// mesh: cells the first untangling sweep leaves invalid.
+PolyMesh raw_random_dual() {
+  RandomMeshParams rp;
+  rp.seed = 1;
+  rp.num_points = 400;
+  PipelineParams pp;
+  pp.split.enabled = false;
+  pp.optim.method = OptimParams::Method::None;
+  return convert(random_classified_mesh(rp), pp).mesh;
+}
+
 // Untangling spares the neighbours of the tangled cells: its first sweep moves
 // the points of every invalid cell on the lagged model (centres held), the
 // later sweeps (the cells it left) on the full model. The full model on the
@@ -305,13 +317,7 @@ TEST(OptimSpeed, UntanglingStopsWhenTheInvalidCountStalls) {
 // bench/README.md). Checked here through the sweeps' model counts, and that
 // the paper's derivatives (Analytic) keep the full model throughout.
 TEST(OptimSpeed, FirstUntanglingSweepUsesTheLaggedModel) {
-  RandomMeshParams rp;
-  rp.seed = 1;
-  rp.num_points = 400;
-  PipelineParams pp;
-  pp.split.enabled = false;
-  pp.optim.method = OptimParams::Method::None;
-  PolyMesh dual = convert(random_classified_mesh(rp), pp).mesh;
+  const PolyMesh dual = raw_random_dual();
   for (auto der : {OptimParams::Derivatives::Corrected, OptimParams::Derivatives::Analytic}) {
     PolyMesh m = dual;
     OptimParams p;
@@ -335,13 +341,7 @@ TEST(OptimSpeed, FirstUntanglingSweepUsesTheLaggedModel) {
 // smoothing sweep on and in the polish, bench/README.md). The paper's
 // derivatives (Analytic) use the full model at every visit.
 TEST(OptimSpeed, FirstSmoothingSweepUsesNoFullModel) {
-  RandomMeshParams rp;
-  rp.seed = 1;
-  rp.num_points = 400;
-  PipelineParams pp;
-  pp.split.enabled = false;
-  pp.optim.method = OptimParams::Method::None;
-  PolyMesh dual = convert(random_classified_mesh(rp), pp).mesh;
+  const PolyMesh dual = raw_random_dual();
   for (auto der : {OptimParams::Derivatives::Corrected, OptimParams::Derivatives::Analytic}) {
     PolyMesh m = dual;
     OptimParams p;

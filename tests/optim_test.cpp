@@ -316,6 +316,12 @@ TEST(Optim, DeterministicAcrossRuns) {
   }
 }
 
+// optimize(m, nullptr, p) with at most `threads` worker threads.
+OptimReport optimize_on_threads(PolyMesh& m, const OptimParams& p, int threads) {
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+  return optimize(m, nullptr, p);
+}
+
 // The sweeps run blocks of 256 consecutive points, the blocks of one colour
 // in parallel: on a block with 15^3 free points (14 blocks, fewer colours, so
 // some colour holds several blocks) one and two threads give the same points
@@ -325,15 +331,7 @@ TEST(Optim, BlockSweepsAreIdenticalForOneAndTwoThreads) {
   OptimParams p;
   p.max_iter = 3;
   PolyMesh a = start, b = start;
-  OptimReport ra, rb;
-  {
-    tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
-    ra = optimize(a, nullptr, p);
-  }
-  {
-    tbb::global_control two(tbb::global_control::max_allowed_parallelism, 2);
-    rb = optimize(b, nullptr, p);
-  }
+  const OptimReport ra = optimize_on_threads(a, p, 1), rb = optimize_on_threads(b, p, 2);
   EXPECT_GT(ra.vertex_updates, 3000u);
   EXPECT_LT(ra.colours, 14u) << "some colour must hold several blocks";
   EXPECT_EQ(a.points, b.points);
@@ -353,15 +351,7 @@ TEST(Optim, ColouredSweepsAreIdenticalForOneAndTwoThreads) {
     p.derivatives = der;
     p.max_iter = 4;
     PolyMesh a = start, b = start;
-    OptimReport ra, rb;
-    {
-      tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
-      ra = optimize(a, nullptr, p);
-    }
-    {
-      tbb::global_control two(tbb::global_control::max_allowed_parallelism, 2);
-      rb = optimize(b, nullptr, p);
-    }
+    const OptimReport ra = optimize_on_threads(a, p, 1), rb = optimize_on_threads(b, p, 2);
     EXPECT_GT(ra.invalid_before, 0);
     EXPECT_EQ(ra.invalid_after, 0);
     EXPECT_EQ(a.points, b.points);
