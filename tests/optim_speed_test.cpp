@@ -214,11 +214,10 @@ OptimParams papers_scheme() {
 TEST(OptimSpeed, DefaultSchemeReachesThePapersSchemesQuality) {
   // The default (corrected lagged model, over-relaxation, polish, its own tol)
   // ends at the quality of the paper's scheme (analytic model, damped Newton,
-  // tol 1e-3): mean within 0.5 %, max within 1 %, every cell valid. (With the
-  // block Gauss-Seidel of the sweeps, local_newton.cpp, the default's max on
-  // these 7^3 blocks is 0.6-0.7 % above the paper's scheme's, 0.2 % with the
-  // former interleaved colour classes; on the 100k domains it is lower than
-  // 5741827's, bench/README.md.)
+  // tol 1e-3): mean and max within 0.5 %, every cell valid. (On these 7^3
+  // blocks: mean +0.07 %, max +0.25-0.31 %. The polish following the current
+  // worst cell with its neighbours brought the max there from +0.6-0.7 %,
+  // where the block Gauss-Seidel had left it, local_newton.cpp.)
   for (unsigned seed : {3u, 4u}) {
     PolyMesh a = jittered_block(7, 0.3, seed), b = a;
     const OptimReport ra = optimize(a, nullptr, papers_scheme());
@@ -227,7 +226,7 @@ TEST(OptimSpeed, DefaultSchemeReachesThePapersSchemesQuality) {
     EXPECT_EQ(rb.invalid_after, 0);
     EXPECT_GT(ra.iterations.size(), 3u);
     EXPECT_LE(rb.after.mean, 1.005 * ra.after.mean) << "seed " << seed;
-    EXPECT_LE(rb.after.max, 1.01 * ra.after.max) << "seed " << seed;
+    EXPECT_LE(rb.after.max, 1.005 * ra.after.max) << "seed " << seed;
     EXPECT_LT(rb.after.mean, 0.95 * rb.before.mean);
   }
 }
@@ -367,7 +366,7 @@ TEST(OptimSpeed, ParsersKnowTheNewNames) {
   EXPECT_STREQ(derivatives_name(OptimParams::Derivatives::Corrected), "corrected");
   OptimParams p;
   EXPECT_EQ(p.derivatives, OptimParams::Derivatives::Corrected);
-  EXPECT_EQ(p.effective_tol(), 5e-3);
+  EXPECT_EQ(p.effective_tol(), 2e-2);
   p.relaxation = 2.5;
   EXPECT_THROW(p.validate(), UsageError);
   p.relaxation = 1.0;

@@ -102,7 +102,7 @@ const std::vector<OptionDef> kTable = {
      [](const Settings& d) { return std::to_string(d.params.optim.polish_sweeps); },
      [](Settings& s, const std::string& v) { s.params.optim.polish_sweeps = std::stoi(v); }},
     {"--polish-share", K::Real, "S", 0, 1,
-     "local scheme: the polish works on the cells whose quality exceeds mean + S x (worst - mean)",
+     "local scheme: the polish moves the points of the cells whose quality exceeds mean + S x (worst - mean) and of their neighbours",
      [](const Settings& d) { return num(d.params.optim.polish_share); },
      [](Settings& s, const std::string& v) { s.params.optim.polish_share = std::stod(v); }},
     {"--settle-move", K::Real, "X", 0, OptimParams::kMaxSettleMove,
@@ -113,7 +113,7 @@ const std::vector<OptionDef> kTable = {
     {"--tol", K::Real, "X", 0, OptimParams::kMaxTol,
      "stop when a sweep lowers the objective by less than X relative",
      [](const Settings& d) {
-       return d.params.optim.tol == OptimParams::kMethodTol ? std::string("5e-3 local, 1e-3 global")
+       return d.params.optim.tol == OptimParams::kMethodTol ? std::string("2e-2 local, 1e-3 global")
                                                             : num(d.params.optim.tol);
      },
      [](Settings& s, const std::string& v) { s.params.optim.tol = std::stod(v); }},

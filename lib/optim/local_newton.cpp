@@ -417,14 +417,33 @@ IterationRecord& record_sweep(Context& ctx, int sweep, const IterationRecord& co
   return rec;
 }
 
+// Grows the marked cells by `reach` point-sharing layers.
+void grow_layers(const Context& ctx, std::vector<char>& near, int reach) {
+  std::vector<std::uint32_t> front, next;
+  for (std::size_t c = 0; c < near.size(); ++c)
+    if (near[c]) front.push_back(static_cast<std::uint32_t>(c));
+  for (int layer = 0; layer < reach; ++layer) {
+    next.clear();
+    for (std::uint32_t c : front)
+      for (PointId q : ctx.stencil.points_of(c))
+        for (std::uint32_t d : ctx.stencil.cells_of(q))
+          if (!near[d]) { near[d] = 1; next.push_back(d); }
+    front.swap(next);
+  }
+}
+
 // The polish phase (prm.polish_sweeps): sweeps that visit only the points of
-// the cells whose quality is above mean + polish_share x (max - mean) (the slowest cells
-// of the Gauss-Seidel; a polish sweep costs a few percent of a full one), while
-// the worst quality drops by more than kPolishTol (relative). A polish sweep after which the
+// the cells whose quality is above mean + polish_share x (max - mean) (the
+// slowest cells of the Gauss-Seidel) and of their point-sharing neighbours
+// (kPolishReach layers: a worst cell is held by the balance with its
+// neighbours, which must make room for it to improve; without them the polish
+// stalls after ~3 sweeps), while the worst quality drops by more than
+// kPolishTol (relative). A polish sweep costs a few percent of a full one. A polish sweep after which the
 // worst quality is not lower is undone (its points restored: every cell was
 // valid before it, so every cell is valid again), so the polish never makes
 // the worst cell worse. Only the cells around the polished points get their
 // qualities and centre gradients refreshed; the phase ends with one record.
+constexpr int kPolishReach = 1;
 constexpr double kPolishTol = 1e-5;
 // Corrected derivatives: from the second smoothing sweep on, the points of
 // cells above kFullModelRatio x the mean quality use the full analytic model
@@ -440,7 +459,7 @@ constexpr double kPolishFullModelShare = 0.8;
 void polish_worst(Context& ctx, const ColourClasses (&passes)[2], tbb::enumerable_thread_specific<VertexNewton>& solvers,
                   int sweep, std::vector<int>& last_change) {
   const auto& prm = ctx.params;
-  const double threshold = ctx.last_stats.mean + prm.polish_share * (ctx.last_stats.max - ctx.last_stats.mean);
+  const double mean = ctx.last_stats.mean;
   std::vector<char> bad(ctx.mesh.num_cells(), 0);
   std::vector<std::uint32_t> region;  // the cells of the points of bad cells
   std::vector<std::pair<std::uint32_t, Point3>> saved;
@@ -448,7 +467,11 @@ void polish_worst(Context& ctx, const ColourClasses (&passes)[2], tbb::enumerabl
   double worst = ctx.last_stats.max;
   int k = 0;
   while (k < prm.polish_sweeps && sweep + k < prm.max_iter) {
+    // The bad cells follow the current worst (a fixed threshold leaves nothing
+    // to polish once an outlier drops below it).
+    const double threshold = mean + prm.polish_share * (worst - mean);
     for (std::size_t c = 0; c < bad.size(); ++c) bad[c] = char(ctx.cell_quality[c] > threshold);
+    grow_layers(ctx, bad, kPolishReach);
     region.clear();
     saved.clear();
     for (std::size_t c = 0; c < bad.size(); ++c)
@@ -466,7 +489,7 @@ void polish_worst(Context& ctx, const ColourClasses (&passes)[2], tbb::enumerabl
       return false;
     };
     IterationRecord one;
-    ctx.full_model_above = ctx.last_stats.mean + kPolishFullModelShare * (ctx.last_stats.max - ctx.last_stats.mean);
+    ctx.full_model_above = mean + kPolishFullModelShare * (worst - mean);
     sweep_points(ctx, passes, solvers, sweep + ++k, last_change, active, one);
     counts.visited += one.visited;
     counts.updates += one.updates;
@@ -493,21 +516,6 @@ constexpr int kUntangleReach = 2;
 // (a cell wrapped around a sheet's free edge cannot be untangled by moving
 // points: the split cuts it, see lib/split).
 constexpr int kUntangleStall = 4;
-// Grows the marked cells by `reach` point-sharing layers.
-void grow_layers(const Context& ctx, std::vector<char>& near, int reach) {
-  std::vector<std::uint32_t> front, next;
-  for (std::size_t c = 0; c < near.size(); ++c)
-    if (near[c]) front.push_back(static_cast<std::uint32_t>(c));
-  for (int layer = 0; layer < reach; ++layer) {
-    next.clear();
-    for (std::uint32_t c : front)
-      for (PointId q : ctx.stencil.points_of(c))
-        for (std::uint32_t d : ctx.stencil.cells_of(q))
-          if (!near[d]) { near[d] = 1; next.push_back(d); }
-    front.swap(next);
-  }
-}
-
 void mark_near_invalid(const Context& ctx, std::vector<char>& near) {
   const std::size_t nc = ctx.mesh.num_cells();
   near.assign(nc, 0);

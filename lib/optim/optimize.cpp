@@ -211,7 +211,7 @@ Json OptimReport::to_json() const {
 double OptimParams::effective_tol() const {
   if (tol != kMethodTol) return tol;
   const bool fast_local = method != Method::Global && relaxation > 1.0 && polish_sweeps > 0;
-  return fast_local ? 5e-3 : 1e-3;
+  return fast_local ? 2e-2 : 1e-3;
 }
 
 void OptimParams::validate() const {

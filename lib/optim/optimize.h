@@ -50,10 +50,11 @@ struct OptimParams {
   int max_iter = 20;
   // Stop when |f_prev - f| < tol * |f_prev| after an iteration (Local: after a
   // sweep of the smoothing phase). Default kMethodTol: the method's own,
-  // effective_tol() -- 5e-3 for the local scheme with over-relaxation and the
-  // polish (a 10^5-tet dual stops after ~5 smoothing sweeps at the quality the
-  // paper's scheme reaches at 1e-3 in ~7), 1e-3 otherwise (Global, or
-  // relaxation 1 without polish: ~6-8 sweeps or rounds).
+  // effective_tol() -- 2e-2 for the local scheme with over-relaxation and the
+  // polish (a 10^5-tet dual stops after 3 smoothing sweeps, mean quality
+  // within 0.5% of the paper's scheme at 1e-3 in ~7 and a lower max: the
+  // polish lowers the worst cells), 1e-3 otherwise (Global, or relaxation 1
+  // without polish: ~6-8 sweeps or rounds).
   static constexpr double kMethodTol = -1.0;
   double tol = kMethodTol;
   double effective_tol() const;
@@ -78,12 +79,13 @@ struct OptimParams {
   double relaxation = 1.6;
   static constexpr double kMaxRelaxation = 1.95;
   // Local: after the smoothing stops, at most polish_sweeps sweeps over the
-  // points of the cells whose quality exceeds mean + polish_share x (max - mean),
+  // points of the cells whose quality exceeds mean + polish_share x (max - mean)
+  // and of their point-sharing neighbours,
   // while the worst quality drops by more than 1e-4 (relative); they count
   // toward max_iter and are reported as one iteration. Default 40 (~5-10 run,
   // each at a few percent of a full sweep's cost); 0: no polish (the paper).
   int polish_sweeps = 40;
-  double polish_share = 0.5;
+  double polish_share = 0.9;
   // Local and Global: step halvings tried before a move is rejected. Default 20.
   int max_halvings = 20;
   // Finite-difference step, relative to the local length cbrt(V0). Default 1e-4
