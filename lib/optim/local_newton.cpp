@@ -433,8 +433,9 @@ void grow_layers(const Context& ctx, std::vector<char>& near, int reach) {
 }
 
 // The polish phase (prm.polish_sweeps): sweeps that visit only the points of
-// the cells whose quality is above mean + polish_share x (max - mean) (the
-// slowest cells of the Gauss-Seidel) and of their point-sharing neighbours
+// the cells whose quality is above mean + polish_share x (w - mean), w the
+// current worst quality (the slowest cells of the Gauss-Seidel), and of their
+// point-sharing neighbours
 // (kPolishReach layers: a worst cell is held by the balance with its
 // neighbours, which must make room for it to improve; without them the polish
 // stalls after ~3 sweeps), while the worst quality drops by more than

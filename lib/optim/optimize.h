@@ -81,7 +81,7 @@ struct OptimParams {
   // Local: after the smoothing stops, at most polish_sweeps sweeps over the
   // points of the cells whose quality exceeds mean + polish_share x (max - mean)
   // and of their point-sharing neighbours,
-  // while the worst quality drops by more than 1e-4 (relative); they count
+  // while the worst quality drops by more than 1e-5 (relative); they count
   // toward max_iter and are reported as one iteration. Default 40 (~5-10 run,
   // each at a few percent of a full sweep's cost); 0: no polish (the paper).
   int polish_sweeps = 40;
