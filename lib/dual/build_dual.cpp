@@ -13,9 +13,12 @@
 #include <bit>
 #include <chrono>
 #include <limits>
+#include <memory>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
+#include <tbb/parallel_pipeline.h>
 
 #include "core/bits.h"
 #include "core/error.h"
@@ -165,16 +168,17 @@ DualPoints make_points(const ClassifiedTetMesh& m, const CutTopology& ct, PolyMe
 // without cuts apart (kCuts false): the same code as Algorithm 1 alone.
 // Flattened: the emit lambda, the ring and side lookups inline into the edge
 // loop (as calls they cost ~5% of the dual's instructions, callgrind).
+// The faces of edges [e0, e1) are appended to pm (its face arrays only).
 template <bool kCuts>
 [[gnu::flatten]] void make_edge_faces(const ClassifiedTetMesh& m, const CutTopology& ct, const VertexSides& sides,
                      const DualPoints& d, PolyMesh& pm, std::vector<std::uint32_t>& model_faces,
-                     std::span<const char> active) {
+                     std::span<const char> active, std::size_t e0, std::size_t e1) {
   std::vector<TetId> ring;
   std::vector<TriId> tris;
   std::vector<std::size_t> cuts;
   std::vector<char> inserted;  // per ring triangle, with cuts only
   std::vector<PointId> loop;
-  for (std::size_t e = 0; e < m.num_edges(); ++e) {
+  for (std::size_t e = e0; e < e1; ++e) {
     const EdgeId eid(e);
     if (!active.empty() && !active[m.edge(eid)[0].idx] && !active[m.edge(eid)[1].idx]) continue;  // DualScope
     if (m.edge_class(eid).dim == 3 && (!kCuts || !ct.ring_cut(eid))) {
@@ -243,6 +247,57 @@ template <bool kCuts>
         emit(cuts[j], j + 1 < cuts.size() ? cuts[j + 1] : cuts[0] + n, true);
     }
   }
+}
+
+// The faces of a block of edges, built apart (face arrays only, numbered
+// from 0) and then appended to the dual.
+struct EdgeFaceBlock {
+  PolyMesh faces;
+  std::vector<std::uint32_t> model_faces;
+};
+
+// Appends block b's faces to pm, renumbered after pm's own.
+void append_faces(PolyMesh& pm, std::vector<std::uint32_t>& model_faces, const EdgeFaceBlock& b) {
+  const std::uint32_t f0 = std::uint32_t(pm.num_faces()), p0 = std::uint32_t(pm.face_points.size());
+  pm.face_points.insert(pm.face_points.end(), b.faces.face_points.begin(), b.faces.face_points.end());
+  for (std::size_t f = 1; f < b.faces.face_offsets.size(); ++f) pm.face_offsets.push_back(p0 + b.faces.face_offsets[f]);
+  pm.face_owner.insert(pm.face_owner.end(), b.faces.face_owner.begin(), b.faces.face_owner.end());
+  pm.face_neighbour.insert(pm.face_neighbour.end(), b.faces.face_neighbour.begin(), b.faces.face_neighbour.end());
+  pm.face_kind.insert(pm.face_kind.end(), b.faces.face_kind.begin(), b.faces.face_kind.end());
+  pm.face_tag.insert(pm.face_tag.end(), b.faces.face_tag.begin(), b.faces.face_tag.end());
+  for (std::uint32_t f : b.model_faces) model_faces.push_back(f0 + f);
+}
+
+// Every edge's faces, in edge order: blocks of edges are built in parallel
+// and appended in order (the same faces for any thread count); a few blocks
+// in flight at a time, so the copies stay small.
+template <bool kCuts>
+void make_all_edge_faces(const ClassifiedTetMesh& m, const CutTopology& ct, const VertexSides& sides,
+                         const DualPoints& d, PolyMesh& pm, std::vector<std::uint32_t>& model_faces,
+                         std::span<const char> active) {
+  constexpr std::size_t kBlock = 8192;
+  const std::size_t ne = m.num_edges();
+  std::size_t next = 0;
+  tbb::parallel_pipeline(
+      8,
+      tbb::make_filter<void, std::size_t>(tbb::filter_mode::serial_in_order,
+                                          [&](tbb::flow_control& fc) -> std::size_t {
+                                            if (next >= ne) fc.stop();
+                                            const std::size_t e0 = next;
+                                            next += kBlock;
+                                            return e0;
+                                          }) &
+          tbb::make_filter<std::size_t, std::shared_ptr<EdgeFaceBlock>>(
+              tbb::filter_mode::parallel,
+              [&](std::size_t e0) {
+                auto b = std::make_shared<EdgeFaceBlock>();
+                make_edge_faces<kCuts>(m, ct, sides, d, b->faces, b->model_faces, active, e0,
+                                       std::min(ne, e0 + kBlock));
+                return b;
+              }) &
+          tbb::make_filter<std::shared_ptr<EdgeFaceBlock>, void>(
+              tbb::filter_mode::serial_in_order,
+              [&](const std::shared_ptr<EdgeFaceBlock>& b) { append_faces(pm, model_faces, *b); }));
 }
 
 // Vertex v -> the triangles of M ∪ cut(v) through v (CSR, triangles
@@ -592,29 +647,34 @@ DualDraft build_dual_draft(const ClassifiedTetMesh& m, const DualParams& params,
   DualPoints d = make_points(m, ct, pm, st);
   st.seconds_points = since(t0);
 
-  // The hints need only the points: find them now and free the centres'
-  // error bounds before the faces fill memory.
-  t0 = Clock::now();
-  if (params.cleanup) {
-    draft.collapse_length =
-        scope && scope->collapse_length >= 0 ? scope->collapse_length : dual_collapse_length(m, params);
-    PointPairs pairs = point_pairs(m, ct, d, pm, draft.collapse_length);
-    draft.exact_pairs = std::move(pairs.exact);
-    draft.short_pairs = std::move(pairs.short_);
-  }
-  d.tet_centre_error = std::vector<double>();
-  d.tri_well_centred = std::vector<char>();
-  draft.pinned = std::move(d.pinned);
-  st.seconds_hints = since(t0);
-
-  t0 = Clock::now();
-  VertexSides sides = compute_sides(m, ct.active ? cuts : nullptr);
-  st.seconds_sides = since(t0);
+  // The hints need only the points, the sides neither: both at once. The
+  // hints free the centres' error bounds before the faces fill memory.
+  VertexSides sides;
+  tbb::parallel_invoke(
+      [&] {
+        const auto t1 = Clock::now();
+        if (params.cleanup) {
+          draft.collapse_length =
+              scope && scope->collapse_length >= 0 ? scope->collapse_length : dual_collapse_length(m, params);
+          PointPairs pairs = point_pairs(m, ct, d, pm, draft.collapse_length);
+          draft.exact_pairs = std::move(pairs.exact);
+          draft.short_pairs = std::move(pairs.short_);
+        }
+        d.tet_centre_error = std::vector<double>();
+        d.tri_well_centred = std::vector<char>();
+        draft.pinned = std::move(d.pinned);
+        st.seconds_hints = since(t1);
+      },
+      [&] {
+        const auto t1 = Clock::now();
+        sides = compute_sides(m, ct.active ? cuts : nullptr);
+        st.seconds_sides = since(t1);
+      });
   t0 = Clock::now();
   std::vector<std::uint32_t> model_faces;
   const std::span<const char> active = scope ? scope->active : std::span<const char>();
-  if (ct.active) make_edge_faces<true>(m, ct, sides, d, pm, model_faces, active);
-  else make_edge_faces<false>(m, ct, sides, d, pm, model_faces, active);
+  if (ct.active) make_all_edge_faces<true>(m, ct, sides, d, pm, model_faces, active);
+  else make_all_edge_faces<false>(m, ct, sides, d, pm, model_faces, active);
   const std::size_t first_cap = pm.num_faces();
   make_caps(m, ct, sides, d, pm, st, active);  // every cap has model points
   for (std::size_t f = first_cap; f < pm.num_faces(); ++f) model_faces.push_back(std::uint32_t(f));

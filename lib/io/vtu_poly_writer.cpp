@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cstring>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <ostream>
 #include <set>
@@ -255,9 +256,10 @@ CellOffsets cell_offsets(const PolyMesh& mesh) {
   o.points.resize(nc);
   o.faces.resize(nc);
   std::int64_t np = 0, nf = 0;
+  CellPointScan points(mesh);
   for (std::size_t c = 0; c < nc; ++c) {
     const CellId cell(c);
-    np += static_cast<std::int64_t>(mesh.cell_points(cell).size());
+    np += static_cast<std::int64_t>(points(cell).size());
     nf += 1;
     for (HalfFace h : mesh.cell(cell)) nf += 1 + static_cast<std::int64_t>(mesh.face(h.face()).size());
     o.half_faces += mesh.cell(cell).size();
@@ -269,36 +271,54 @@ CellOffsets cell_offsets(const PolyMesh& mesh) {
 
 // The Cells section: connectivity (distinct points, first-seen order),
 // offsets, types, faces (per cell: nFaces, then nPts ids... in the cell's
-// outward orientation), faceoffsets.
-std::vector<OutArray> cell_arrays(const PolyMesh& mesh, const CellOffsets& off) {
+// outward orientation), faceoffsets; every index of type I (named itype).
+template <class I>
+std::vector<OutArray> cell_arrays_of(const PolyMesh& mesh, const CellOffsets& off, const char* itype) {
   const std::size_t nc = mesh.num_cells();
   const std::size_t nconn = nc ? static_cast<std::size_t>(off.points.back()) : 0;
   const std::size_t nfaces = nc ? static_cast<std::size_t>(off.faces.back()) : 0;
   auto connectivity = [&mesh, nc](ByteSink& s) {
+    CellPointScan points(mesh);
     for (std::size_t c = 0; c < nc; ++c)
-      for (PointId p : mesh.cell_points(CellId(c))) s.put<std::int64_t>(p.idx);
+      for (PointId p : points(CellId(c))) s.put(static_cast<I>(p.idx));
   };
   auto faces = [&mesh, nc](ByteSink& s) {
     for (std::size_t c = 0; c < nc; ++c) {
       const auto cell = mesh.cell(CellId(c));
-      s.put(static_cast<std::int64_t>(cell.size()));
+      s.put(static_cast<I>(cell.size()));
       for (HalfFace h : cell) {
         const auto f = mesh.face(h.face());
-        s.put(static_cast<std::int64_t>(f.size()));
+        s.put(static_cast<I>(f.size()));
         if (h.side() == 1)
-          for (std::size_t i = f.size(); i-- > 0;) s.put<std::int64_t>(f[i].idx);
+          for (std::size_t i = f.size(); i-- > 0;) s.put(static_cast<I>(f[i].idx));
         else
-          for (PointId p : f) s.put<std::int64_t>(p.idx);
+          for (PointId p : f) s.put(static_cast<I>(p.idx));
       }
     }
+  };
+  auto offsets = [](const std::vector<std::int64_t>& v) {
+    return [&v](ByteSink& s) {
+      for (std::int64_t x : v) s.put(static_cast<I>(x));
+    };
   };
   auto types = [nc](ByteSink& s) {
     for (std::size_t c = 0; c < nc; ++c) s.put(kVtkPolyhedron);
   };
-  return {out_array<std::int64_t>("Int64", "connectivity", 1, nconn, connectivity),
-          vector_array("Int64", "offsets", off.points), out_array<std::uint8_t>("UInt8", "types", 1, nc, types),
-          out_array<std::int64_t>("Int64", "faces", 1, nfaces, faces),
-          vector_array("Int64", "faceoffsets", off.faces)};
+  return {out_array<I>(itype, "connectivity", 1, nconn, connectivity),
+          out_array<I>(itype, "offsets", 1, nc, offsets(off.points)),
+          out_array<std::uint8_t>("UInt8", "types", 1, nc, types), out_array<I>(itype, "faces", 1, nfaces, faces),
+          out_array<I>(itype, "faceoffsets", 1, nc, offsets(off.faces))};
+}
+
+// Int32 indices when every one fits (half the bytes of the Cells section,
+// which is most of the file), else Int64. VTK reads either (it converts
+// connectivity, offsets, faces and faceoffsets to vtkIdType), and so does
+// io/vtu_poly_reader.
+std::vector<OutArray> cell_arrays(const PolyMesh& mesh, const CellOffsets& off) {
+  constexpr std::int64_t kMax = std::numeric_limits<std::int32_t>::max();
+  const bool fits = static_cast<std::int64_t>(mesh.num_points()) <= kMax &&
+                    (off.points.empty() || (off.points.back() <= kMax && off.faces.back() <= kMax));
+  return fits ? cell_arrays_of<std::int32_t>(mesh, off, "Int32") : cell_arrays_of<std::int64_t>(mesh, off, "Int64");
 }
 
 // Every array but the Cells section, built from the mesh as it is written.

@@ -13,6 +13,21 @@ std::vector<PointId> PolyMesh::cell_points(CellId c) const {
   return out;
 }
 
+std::span<const PointId> CellPointScan::operator()(CellId c) {
+  if (++gen_ == 0) {  // wrapped: every stamp is stale
+    std::fill(stamp_.begin(), stamp_.end(), 0u);
+    gen_ = 1;
+  }
+  out_.clear();
+  for (HalfFace h : mesh_->cell(c))
+    for (PointId p : mesh_->face(h.face()))
+      if (stamp_[p.idx] != gen_) {
+        stamp_[p.idx] = gen_;
+        out_.push_back(p);
+      }
+  return out_;
+}
+
 std::vector<PointId> PolyMesh::oriented_loop(HalfFace h) const {
   auto f = face(h.face());
   std::vector<PointId> loop(f.begin(), f.end());

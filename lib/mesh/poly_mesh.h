@@ -103,4 +103,20 @@ struct PolyMesh {
   std::vector<PointId> oriented_loop(HalfFace h) const;
 };
 
+// The distinct points of cells in cell_points' order, without its linear
+// search (quadratic in a cell's size): one stamp per mesh point (4 B each),
+// kept between calls. Not shared between threads; one per thread.
+class CellPointScan {
+ public:
+  explicit CellPointScan(const PolyMesh& mesh) : mesh_(&mesh), stamp_(mesh.num_points(), 0) {}
+  // Cell c's distinct points; valid until the next call.
+  std::span<const PointId> operator()(CellId c);
+
+ private:
+  const PolyMesh* mesh_;
+  std::vector<std::uint32_t> stamp_;  // == gen_: already among the current cell's points
+  std::vector<PointId> out_;
+  std::uint32_t gen_ = 0;
+};
+
 }  // namespace polydual

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <set>
 #include <span>
 #include <tuple>
@@ -43,7 +44,7 @@ double volume_around(const PolyMesh& pm, CellId c, std::span<const PointId> pts)
 }  // namespace
 
 double cell_volume(const PolyMesh& pm, CellId c) {
-  const std::vector<PointId> pts = pm.cell_points(c);
+  const std::vector<PointId> pts = pm.cell_points(c);  // one cell: no scan's stamps
   return volume_around(pm, c, pts);
 }
 
@@ -98,19 +99,37 @@ struct CellCheck {
   double volume = 0;  // when sound
 };
 
-// Per-thread scratch of check_cell; `seen[p] == c + 1` when point p is already
-// among cell c's points.
+// Per-thread scratch of check_cell: the edge keys (min << 32 | max) used
+// forward (min to max) and backward, and the faces seen.
 struct CellScratch {
-  std::vector<std::pair<std::uint64_t, int>> edges;  // (edge key, +1 forward / -1 backward)
-  std::vector<std::uint32_t> faces_seen, seen;
-  std::vector<PointId> points;
+  explicit CellScratch(const PolyMesh& pm) : points(pm) {}
+  std::vector<std::uint64_t> forward, backward;
+  std::vector<std::uint32_t> faces_seen;
+  CellPointScan points;
 };
+
+// Per edge key of the sorted forward and backward lists, its count in each:
+// closed when equal, manifold when they add up to 2, misoriented when they
+// differ by 2 or more.
+void count_edge_uses(const std::vector<std::uint64_t>& fw, const std::vector<std::uint64_t>& bw, CellCheck& r) {
+  std::size_t i = 0, j = 0;
+  while (i < fw.size() || j < bw.size()) {
+    const std::uint64_t key = j == bw.size() || (i < fw.size() && fw[i] < bw[j]) ? fw[i] : bw[j];
+    std::size_t nf = 0, nb = 0;
+    for (; i < fw.size() && fw[i] == key; ++i) ++nf;
+    for (; j < bw.size() && bw[j] == key; ++j) ++nb;
+    r.closed &= nf == nb;
+    r.manifold &= nf + nb == 2;
+    r.misoriented |= nf >= nb + 2 || nb >= nf + 2;
+  }
+}
 
 // Closed: every edge of the cell's oriented loops is used once in each
 // direction; manifold: by exactly two loops; slit: a face appears twice.
 CellCheck check_cell(const PolyMesh& pm, std::uint32_t c, const std::vector<bool>& loop_in_range, CellScratch& s) {
   CellCheck r;
-  s.edges.clear();
+  s.forward.clear();
+  s.backward.clear();
   s.faces_seen.clear();
   for (HalfFace h : pm.cell(CellId(c))) {
     if (h.face().idx >= pm.num_faces() || !loop_in_range[h.face().idx]) {
@@ -123,31 +142,16 @@ CellCheck check_cell(const PolyMesh& pm, std::uint32_t c, const std::vector<bool
     auto at = [&](std::size_t k) { return (h.side() == 0 ? f[k] : f[n - 1 - k]).idx; };
     for (std::size_t k = 0; k < n; ++k) {
       const std::uint32_t a = at(k), b = at((k + 1) % n);
-      s.edges.emplace_back((std::uint64_t(std::min(a, b)) << 32) | std::max(a, b), a < b ? 1 : -1);
+      (a < b ? s.forward : s.backward).push_back((std::uint64_t(std::min(a, b)) << 32) | std::max(a, b));
     }
   }
-  std::sort(s.edges.begin(), s.edges.end());
-  for (std::size_t i = 0; i < s.edges.size();) {
-    std::size_t j = i;
-    int balance = 0;
-    for (; j < s.edges.size() && s.edges[j].first == s.edges[i].first; ++j) balance += s.edges[j].second;
-    r.closed &= balance == 0;
-    r.manifold &= j - i == 2;
-    r.misoriented |= std::abs(balance) >= 2;
-    i = j;
-  }
+  std::sort(s.forward.begin(), s.forward.end());
+  std::sort(s.backward.begin(), s.backward.end());
+  count_edge_uses(s.forward, s.backward, r);
   std::sort(s.faces_seen.begin(), s.faces_seen.end());
   r.slit = std::adjacent_find(s.faces_seen.begin(), s.faces_seen.end()) != s.faces_seen.end();
   if (!r.sound) return r;
-  // The distinct points in cell_points order (first seen along stored loops).
-  s.points.clear();
-  for (HalfFace h : pm.cell(CellId(c)))
-    for (PointId p : pm.face(h.face()))
-      if (s.seen[p.idx] != c + 1) {
-        s.seen[p.idx] = c + 1;
-        s.points.push_back(p);
-      }
-  r.volume = volume_around(pm, CellId(c), s.points);
+  r.volume = volume_around(pm, CellId(c), s.points(CellId(c)));  // cell_points order
   return r;
 }
 
@@ -156,10 +160,9 @@ CellCheck check_cell(const PolyMesh& pm, std::uint32_t c, const std::vector<bool
 void check_cells(const PolyMesh& pm, const std::vector<bool>& loop_in_range, ValidationReport& r) {
   const std::size_t nc = pm.num_cells();
   std::vector<CellCheck> checks(nc);
-  tbb::enumerable_thread_specific<CellScratch> scratch;
+  tbb::enumerable_thread_specific<CellScratch> scratch(std::cref(pm));
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nc, 256), [&](const auto& range) {
     CellScratch& s = scratch.local();
-    if (s.seen.empty()) s.seen.assign(pm.num_points(), 0);
     for (std::size_t c = range.begin(); c != range.end(); ++c)
       checks[c] = check_cell(pm, static_cast<std::uint32_t>(c), loop_in_range, s);
   });

@@ -254,8 +254,9 @@ std::vector<char> split_region(const ClassifiedTetMesh& m, const VertexCuts& cut
   std::vector<char> pin(mesh.num_points(), 0), seed(mesh.num_cells(), 0);
   if (mesh.point_origin.size() != mesh.num_points()) return std::vector<char>(mesh.num_cells(), 1);
   for (std::size_t p = 0; p < pin.size(); ++p) pin[p] = char(pinned(m, &cuts, mesh.point_origin[p]));
+  CellPointScan points(mesh);
   for (std::size_t c = 0; c < seed.size(); ++c)
-    for (PointId p : mesh.cell_points(CellId(c)))
+    for (PointId p : points(CellId(c)))
       if (pin[p.idx]) {
         seed[c] = 1;
         break;

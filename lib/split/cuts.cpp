@@ -1,5 +1,7 @@
 #include "split/cuts.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <deque>
 #include <numeric>
@@ -238,10 +240,6 @@ bool free_edge_star(const ClassifiedTetMesh& m, Star& s) {
   }
 }
 
-bool has_model_triangle(const Star& s) {
-  return std::any_of(s.model.begin(), s.model.end(), [](char c) { return c != 0; });
-}
-
 // Model face planes at v: per model face tag, its lowest-numbered triangle at v.
 std::vector<TriId> face_planes(const ClassifiedTetMesh& m, const Star& s) {
   std::vector<std::pair<std::int32_t, TriId>> best;
@@ -260,6 +258,17 @@ std::vector<TriId> face_planes(const ClassifiedTetMesh& m, const Star& s) {
 
 int sign_value(Sign s) { return s == Sign::Positive ? 1 : s == Sign::Negative ? -1 : 0; }
 
+// Whether a model-face triangle passes through v (read from the tets, without
+// building the star: most vertices have none, and no free edge then).
+bool touches_model_face(const ClassifiedTetMesh& m, VertexId v) {
+  for (TetId t : m.vertex_tets(v)) {
+    const int apex = m.local_index(t, v);
+    for (int i = 0; i < 4; ++i)
+      if (i != apex && m.on_model_face(m.tet_triangle(t, i))) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 std::vector<std::uint32_t> star_sides(const ClassifiedTetMesh& m, VertexId v, const VertexCuts* cuts) {
@@ -271,15 +280,28 @@ std::vector<std::uint32_t> star_sides(const ClassifiedTetMesh& m, VertexId v, co
 }
 
 VertexCuts free_edge_cuts(const ClassifiedTetMesh& m, std::vector<VertexId>* slit) {
+  // Independent per vertex: fixed blocks in parallel, joined in vertex order
+  // (the same pairs and slit list for any thread count).
+  constexpr std::size_t kBlock = 4096;
+  const std::size_t nv = m.num_vertices(), nb = (nv + kBlock - 1) / kBlock;
+  std::vector<std::vector<std::pair<VertexId, TriId>>> block_pairs(nb);
+  std::vector<std::vector<VertexId>> block_slit(nb);
+  tbb::parallel_for(std::size_t{0}, nb, [&](std::size_t b) {
+    for (std::size_t vi = b * kBlock; vi < std::min(nv, (b + 1) * kBlock); ++vi) {
+      if (!touches_model_face(m, VertexId(vi))) continue;
+      Star s(m, VertexId(vi));
+      if (!free_edge_star(m, s)) continue;
+      collect(s, block_pairs[b]);
+      block_slit[b].push_back(VertexId(vi));
+    }
+  });
   std::vector<std::pair<VertexId, TriId>> pairs;
   if (slit) slit->clear();
-  for (std::size_t vi = 0; vi < m.num_vertices(); ++vi) {
-    Star s(m, VertexId(vi));
-    if (!has_model_triangle(s) || !free_edge_star(m, s)) continue;
-    collect(s, pairs);
-    if (slit) slit->push_back(VertexId(vi));
+  for (std::size_t b = 0; b < nb; ++b) {
+    pairs.insert(pairs.end(), block_pairs[b].begin(), block_pairs[b].end());
+    if (slit) slit->insert(slit->end(), block_slit[b].begin(), block_slit[b].end());
   }
-  return VertexCuts::from_pairs(m.num_vertices(), std::move(pairs));
+  return VertexCuts::from_pairs(nv, std::move(pairs));
 }
 
 VertexCuts plane_cuts(const ClassifiedTetMesh& m, std::span<const VertexId> vertices) {
