@@ -2,6 +2,7 @@
 # CMakeLists.txt after lib/). `cmake --install build --prefix P` gives
 #   P/bin/polydual                                the command
 #   P/lib/polydual/polydual-gmsh.so               its Gmsh module (generate, demo; dlopen)
+#   P/lib/polydual/polydual-lbfgs.so              its Ceres L-BFGS module (--optimize global; dlopen)
 #   P/lib/libpolydual_core.a                      polydual::polydual
 #   P/lib/libpolydual_generate.a                  polydual::generate (component "generate", needs libgmsh)
 #   P/include/polydual/<core|mesh|io|...>/*.h     lib/ without cli/ and alloc/
@@ -14,8 +15,8 @@ include(CMakePackageConfigHelpers)
 set(POLYDUAL_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/polydual)
 
 install(TARGETS polydual RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-# Where the command looks for it (lib/generate/gmsh_module_loader.cpp).
-install(TARGETS polydual_gmsh LIBRARY DESTINATION ${POLYDUAL_GMSH_MODULE_DIR})
+# Where the command looks for them (lib/cli/module_loader.h).
+install(TARGETS polydual_gmsh polydual_lbfgs LIBRARY DESTINATION ${POLYDUAL_GMSH_MODULE_DIR})
 install(TARGETS polydual_core EXPORT polydual-targets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(TARGETS polydual_generate EXPORT polydual-generate-targets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 # lib/cli (the command) and lib/alloc (a replacement of the global operator

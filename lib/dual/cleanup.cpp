@@ -189,9 +189,13 @@ std::size_t drop_unused_points(PolyMesh& pm) {
   pm.point_class.resize(k);
   if (!pm.point_origin.empty()) pm.point_origin.resize(k);
   for (PointId& p : pm.face_points) p = PointId(new_id[p.idx]);
-  pm.points.shrink_to_fit();
-  pm.point_class.shrink_to_fit();
-  pm.point_origin.shrink_to_fit();
+  // Shrinking copies each array while the old one is alive, at the memory
+  // peak of the build: worth it only when much was dropped.
+  if (8 * (np - k) > np) {
+    pm.points.shrink_to_fit();
+    pm.point_class.shrink_to_fit();
+    pm.point_origin.shrink_to_fit();
+  }
   return np - k;
 }
 

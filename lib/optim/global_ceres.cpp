@@ -1,7 +1,7 @@
 // The global scheme (design §7): the same objective over all free point coordinates
 // at once, minimised by Ceres.
 //
-// Why ceres::GradientProblem + L-BFGS and not least squares on sqrt(kappa_mod):
+// Why Ceres' GradientProblem + L-BFGS and not least squares on sqrt(kappa_mod):
 // the objective is a plain sum of corner terms whose curvature is dominated by
 // the terms themselves near tangled corners (kappa_mod grows like |V| S / V0^2
 // there), so a Gauss-Newton model of sqrt(kappa_mod) residuals is poor exactly
@@ -24,14 +24,14 @@
 // run stops. So, like the local scheme, the global scheme never turns a valid
 // cell invalid. It stops on the local scheme's criterion, a relative decrease
 // of the objective below tol after a round (the local: after a sweep).
-#include <ceres/gradient_problem.h>
-#include <ceres/gradient_problem_solver.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
+#include "lbfgs/lbfgs_module.h"
 #include "optim/context.h"
 #include "optim/objective.h"
 #include "quality/star_verdict.h"
@@ -46,7 +46,7 @@ struct Frames {
   std::vector<std::array<Vec3, 3>> basis;
 };
 
-class GlobalObjective final : public ceres::FirstOrderFunction {
+class GlobalObjective {
  public:
   GlobalObjective(const Context& ctx, const Frames& fr) : ctx_(ctx), fr_(fr), pts_(ctx.mesh.points) {
     const MeshStencil& s = ctx.stencil;
@@ -60,8 +60,11 @@ class GlobalObjective final : public ceres::FirstOrderFunction {
     std::vector<std::uint32_t> fill(slot_off_.begin(), slot_off_.end() - 1);
     for (std::uint32_t i = 0; i < s.cell_pts.size(); ++i) slots_[fill[s.cell_pts[i].idx]++] = i;
   }
-  int NumParameters() const override { return static_cast<int>(fr_.off.back()); }
-  bool Evaluate(const double* t, double* cost, double* gradient) const override {
+  // The callback of lbfgs_module::Problem.
+  static bool evaluate(void* self, const double* t, double* cost, double* gradient) {
+    return static_cast<const GlobalObjective*>(self)->Evaluate(t, cost, gradient);
+  }
+  bool Evaluate(const double* t, double* cost, double* gradient) const {
     for (std::size_t i = 0; i < fr_.free.size(); ++i) {
       Point3 x = fr_.origin[i];
       for (std::uint32_t j = fr_.off[i]; j < fr_.off[i + 1]; ++j) x += t[j] * fr_.basis[i][j - fr_.off[i]];
@@ -162,19 +165,19 @@ std::size_t freeze_invalidating_points(Context& ctx, const PointCells& pc, const
   return count;
 }
 
-// One L-BFGS solve of the round from t = 0.
+// One L-BFGS solve of the round from t = 0 (lbfgs/lbfgs_module.h: Ceres'
+// GradientProblemSolver, linked in or loaded as a module).
 std::vector<double> solve_round(const Context& ctx, const Frames& fr) {
   std::vector<double> t(fr.off.back(), 0.0);
-  ceres::GradientProblem problem(new GlobalObjective(ctx, fr));  // takes ownership
-  ceres::GradientProblemSolver::Options opt;
-  opt.line_search_direction_type = ceres::LBFGS;
-  opt.max_num_iterations = ctx.params.global_iterations_per_round;
-  opt.logging_type = ceres::SILENT;
-  opt.minimizer_progress_to_stdout = false;
+  GlobalObjective objective(ctx, fr);
+  const lbfgs_module::Problem problem{t.size(), &objective, &GlobalObjective::evaluate};
+  lbfgs_module::Options opt;
+  opt.max_iterations = ctx.params.global_iterations_per_round;
   opt.function_tolerance = 1e-12;
   opt.parameter_tolerance = 1e-12;
-  ceres::GradientProblemSolver::Summary sum;
-  ceres::Solve(opt, problem, t.data(), &sum);
+  std::string error;
+  if (!lbfgs_module::lbfgs_api().minimize(problem, opt, t.data(), error))
+    throw std::runtime_error("the global optimiser's L-BFGS solver failed: " + error);
   return t;
 }
 

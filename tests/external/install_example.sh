@@ -28,9 +28,9 @@ cmake --install "$build" --prefix "$prefix" > "$out/install.log"
 # The layout: the command, two archives, the package, headers only under
 # include/polydual (no lib/cli, lib/alloc; nothing from tests, bench, fuzz).
 unexpected=$(cd "$prefix" && find . -type f | sed 's|^\./||' | grep -Ev \
-  '^(bin/polydual|lib/polydual/polydual-gmsh\.so|lib/libpolydual_(core|generate)\.a|lib/cmake/polydual/polydual-(config|config-version|targets|targets-[a-z]+|generate-targets|generate-targets-[a-z]+)\.cmake|include/polydual/[a-z_]+/[a-z0-9_]+\.h)$' || true)
+  '^(bin/polydual|lib/polydual/polydual-(gmsh|lbfgs)\.so|lib/libpolydual_(core|generate)\.a|lib/cmake/polydual/polydual-(config|config-version|targets|targets-[a-z]+|generate-targets|generate-targets-[a-z]+)\.cmake|include/polydual/[a-z_]+/[a-z0-9_]+\.h)$' || true)
 [ -z "$unexpected" ] || fail "unexpected installed files: $unexpected"
-for f in bin/polydual lib/polydual/polydual-gmsh.so lib/libpolydual_core.a lib/libpolydual_generate.a lib/cmake/polydual/polydual-config.cmake \
+for f in bin/polydual lib/polydual/polydual-gmsh.so lib/polydual/polydual-lbfgs.so lib/libpolydual_core.a lib/libpolydual_generate.a lib/cmake/polydual/polydual-config.cmake \
          lib/cmake/polydual/polydual-config-version.cmake include/polydual/pipeline/convert.h \
          include/polydual/io/read_tet_mesh.h include/polydual/generate/domains.h; do
   [ -f "$prefix/$f" ] || fail "missing $prefix/$f"
@@ -57,6 +57,12 @@ configure_build() {
 "$prefix/bin/polydual" generate cube --tets 500 -o "$out/gen500.msh" 2> "$out/gen500.log" ||
   { cat "$out/gen500.log"; fail "the installed polydual cannot generate (module in lib/polydual?)"; }
 [ -s "$out/gen500.msh" ] || fail "the installed polydual generate wrote no mesh"
+# ... and Ceres' solver only for --optimize global, from lib/polydual.
+! ldd "$prefix/bin/polydual" | grep -Eq 'libglog|libcholmod|liblapack' ||
+  fail "the installed polydual links Ceres' libraries (only its L-BFGS module should)"
+"$prefix/bin/polydual" convert "$out/cube5.msh" -o "$out/cube5_global.vtu" --optimize global --quiet \
+  > /dev/null 2> "$out/global.log" ||
+  { cat "$out/global.log"; fail "the installed polydual cannot run --optimize global (module in lib/polydual?)"; }
 
 "$prefix/bin/polydual" convert "$out/cube5.msh" -o "$out/cube5_cmd.vtu" --json > "$out/cube5_cmd.json"
 expected=$(/usr/bin/python3 -c '
