@@ -70,7 +70,9 @@ class ByteSink {
   std::string take() { return std::move(buf_); }
 
  private:
-  static constexpr std::size_t kChunk = std::size_t{1} << 20;
+  // As core/atomic_file.cpp's chunk: a full buffer passes through the file's
+  // stream buffer without a copy.
+  static constexpr std::size_t kChunk = std::size_t{256} << 10;
   std::ostream* os_;
   std::string buf_;
 };
