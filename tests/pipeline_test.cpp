@@ -140,6 +140,11 @@ TEST(Pipeline, ConvertFileReadsAndWrites) {
   EXPECT_EQ(back.num_cells(), r.mesh.num_cells());
   const CheckResult c = check_mesh(back, nullptr);
   EXPECT_EQ(c.invalid_cells, r.check.invalid_cells);
+  // The summary's face flatness, measured while writing, is the mesh's own.
+  ASSERT_TRUE(r.flatness.has_value());
+  EXPECT_EQ(r.flatness->to_json().dump(0), flatness_stats(r.mesh).to_json().dump(0));
+  EXPECT_EQ(mesh_summary(r.mesh, r.check, &r.primal, &*r.flatness).dump(0),
+            mesh_summary(r.mesh, r.check, &r.primal).dump(0));
   // The same through the OpenFOAM writer.
   const ConvertResult f = convert_file(in, (d / "case").string(), PolyFormat::Foam, params);
   EXPECT_TRUE(fs::exists(d / "case/constant/polyMesh/faces"));

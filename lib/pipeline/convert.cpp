@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstdio>
 
+#include <tbb/parallel_invoke.h>
+
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "core/stopwatch.h"
@@ -479,11 +481,20 @@ ConvertResult convert_file(const std::string& in, const std::string& out, PolyFo
     return s;
   });
   run_pipeline(r, soup, params, hooks, &soup);
-  r.written = run_stage(r.report, hooks, "write", [&](Json& stats) {
-    Json w = write_result(r, out, format, options);
-    stats = w;
-    return w;
-  });
+  // The writer is serial: the summary's face flatness (a statistic, not a
+  // decision; deterministic for any thread count) is measured meanwhile. An
+  // exception in either waits for the other, then propagates.
+  FlatnessStats flat;
+  tbb::parallel_invoke(
+      [&] {
+        r.written = run_stage(r.report, hooks, "write", [&](Json& stats) {
+          Json w = write_result(r, out, format, options);
+          stats = w;
+          return w;
+        });
+      },
+      [&] { flat = flatness_stats(r.mesh); });
+  r.flatness = flat;
   r.report.seconds = clock.seconds();
   return r;
 }

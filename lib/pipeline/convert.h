@@ -10,6 +10,7 @@
 // the experiments, the benchmarks and other programs call these entries.
 #pragma once
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,7 @@
 #include "mesh/tet_soup.h"
 #include "pipeline/check.h"
 #include "pipeline/params.h"
+#include "quality/flatness.h"
 
 namespace polydual {
 
@@ -46,6 +48,9 @@ struct ConvertResult {
   Json written;              // convert_file: the writer's record
   IgnoredEntities ignored;   // what the reader dropped (unattached entities)
   std::vector<std::string> warnings;  // the reader's warnings, one line each
+  // convert_file: the summary's face flatness of `mesh`, measured on the other
+  // core while the (serial) writer runs; empty otherwise (mesh_summary measures it).
+  std::optional<FlatnessStats> flatness;
 };
 
 // What a caller sees while the pipeline runs; every member may be empty.

@@ -163,7 +163,8 @@ Json model_summary(const ClassifiedTetMesh& m) {
   return model;
 }
 
-Json mesh_summary(const PolyMesh& pm, const CheckResult& check, const ClassifiedTetMesh* primal) {
+Json mesh_summary(const PolyMesh& pm, const CheckResult& check, const ClassifiedTetMesh* primal,
+                  const FlatnessStats* flatness) {
   const ValidationReport& rep = check.validation;
   Json j = Json::object();
   j.set("cells", pm.num_cells());
@@ -184,7 +185,7 @@ Json mesh_summary(const PolyMesh& pm, const CheckResult& check, const Classified
   // primal's (design §10; double sums within a relative tolerance).
   j.set("geometry_ok", rep.geometry_ok());
   j.set("volume_mismatches", volume_mismatches_json(rep.volume_mismatches));
-  j.set("face_flatness", flatness_stats(pm).to_json());
+  j.set("face_flatness", (flatness ? *flatness : flatness_stats(pm)).to_json());
   return j;
 }
 
@@ -201,7 +202,7 @@ Json convert_summary(const ConvertResult& r, const PipelineParams& params) {
   for (const std::string& w : r.warnings) warnings.push(w);
   j.set("warnings", warnings);
   j.set("model", model_summary(r.primal));
-  Json mesh = mesh_summary(r.mesh, r.check, &r.primal);
+  Json mesh = mesh_summary(r.mesh, r.check, &r.primal, r.flatness ? &*r.flatness : nullptr);
   for (const char* k : {"cells", "faces", "points", "invalid_cells", "closed_cells", "slit_cells", "face_errors",
                         "negative_volume_cells", "materials", "missing_model_entities", "topology_ok",
                         "geometry_ok", "volume_mismatches", "invalid_by_class", "invalid_where", "face_flatness"})

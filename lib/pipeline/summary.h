@@ -16,8 +16,10 @@ Json ignored_summary(const IgnoredEntities& ignored);
 Json model_summary(const ClassifiedTetMesh& mesh);
 
 // Counts, invalid cells and where they sit (by the class of their primal
-// vertex, when the primal is known), per-material volumes, model coverage.
-Json mesh_summary(const PolyMesh& mesh, const CheckResult& check, const ClassifiedTetMesh* primal);
+// vertex, when the primal is known), per-material volumes, model coverage,
+// face flatness (measured here unless `flatness`, of this mesh, is given).
+Json mesh_summary(const PolyMesh& mesh, const CheckResult& check, const ClassifiedTetMesh* primal,
+                  const FlatnessStats* flatness = nullptr);
 
 // The whole convert record: input sizes, model, mesh summary, invalid cells
 // before/after, every stage's stats and seconds, the params.

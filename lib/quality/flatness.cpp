@@ -48,13 +48,17 @@ double plane_deviation(std::span<const Point3> p) {
   for (const Point3& x : p) m += x;
   m = m / double(p.size());
   Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
-  double diameter = 0;
+  double diameter2 = 0;  // squared: one root below (sqrt is monotone and correctly rounded)
   for (std::size_t i = 0; i < p.size(); ++i) {
     const Vec3 d = p[i] - m;
     const Eigen::Vector3d e(d.x, d.y, d.z);
     C += e * e.transpose();
-    for (std::size_t j = i + 1; j < p.size(); ++j) diameter = std::max(diameter, norm(p[j] - p[i]));
+    for (std::size_t j = i + 1; j < p.size(); ++j) {
+      const Vec3 e2 = p[j] - p[i];
+      diameter2 = std::max(diameter2, dot(e2, e2));
+    }
   }
+  const double diameter = std::sqrt(diameter2);
   if (!(diameter > 0)) return 0;
   // Closed form for 3x3 (a report statistic, not a validity decision: the
   // iterative solver cost ~7% of a whole `convert --optimize untangle`).
