@@ -258,6 +258,55 @@ TEST(Validate, ReversedFaceInThePipelineDual) {
 
 // ---- topology: faces
 
+// One prism cell over a regular n-gon (unit circumradius, height 1): 2n
+// points, so n > 32 takes validate's path for cells of more than 64 points
+// (sorted edge keys) and n <= 32 its small-cell path (counts by local index).
+HandMesh ngon_prism(int n) {
+  HandMesh h;
+  const double pi = std::acos(-1.0);
+  for (int z = 0; z < 2; ++z)
+    for (int i = 0; i < n; ++i)
+      h.points.push_back({std::cos(2 * pi * i / n), std::sin(2 * pi * i / n), double(z)});
+  const std::uint32_t none = CellId::kInvalid, N = std::uint32_t(n);
+  FaceSpec bottom{{}, 0, none, FaceKind::External}, top{{}, 0, none, FaceKind::External};
+  for (std::uint32_t i = 0; i < N; ++i) {
+    bottom.loop.push_back(N - 1 - i);  // normal -z
+    top.loop.push_back(N + i);         // normal +z
+    h.faces.push_back({{i, (i + 1) % N, N + (i + 1) % N, N + i}, 0, none, FaceKind::External});
+  }
+  h.faces.push_back(bottom);
+  h.faces.push_back(top);
+  h.cells.resize(1);
+  for (std::size_t f = 0; f < h.faces.size(); ++f) h.cells[0].push_back(HalfFace(FaceId(f), 0));
+  return h;
+}
+
+TEST(Validate, SmallAndLargeCellsAreClosedOpenOrMisorientedAlike) {
+  const double pi = std::acos(-1.0);
+  for (int n : {5, 31, 32, 33, 40}) {
+    SCOPED_TRACE(n);
+    const ValidationReport good = validate(ngon_prism(n).build());
+    expect_sound(good, 1);
+    EXPECT_NEAR(good.material_volume.at(1), 0.5 * n * std::sin(2 * pi / n), 1e-12);
+    HandMesh reversed = ngon_prism(n);
+    std::reverse(reversed.faces[2].loop.begin(), reversed.faces[2].loop.end());
+    const ValidationReport rev = validate(reversed.build());
+    EXPECT_EQ(rev.closed_cells, 0u);
+    EXPECT_EQ(rev.misoriented_cells, 1u);
+    HandMesh open = ngon_prism(n);
+    open.cells[0].pop_back();  // the top cap no longer listed
+    const ValidationReport op = validate(open.build());
+    EXPECT_EQ(op.closed_cells, 0u);
+    EXPECT_EQ(op.misoriented_cells, 0u);
+    HandMesh twice = ngon_prism(n);
+    twice.cells[0].push_back(HalfFace(FaceId(0), 0));  // a side listed twice: slit, edges used 3 times
+    const ValidationReport tw = validate(twice.build());
+    EXPECT_EQ(tw.slit_cells, 1u);
+    EXPECT_EQ(tw.closed_cells, 0u);
+    EXPECT_EQ(tw.manifold_cells, 0u);
+  }
+}
+
 TEST(Validate, FaceWithFewerThanThreePoints) {
   HandMesh h = box_row(1);
   h.faces[2].loop.resize(2);

@@ -50,22 +50,41 @@ double cell_volume(const PolyMesh& pm, CellId c) {
 
 namespace {
 
-// Per face: its loop, owner, neighbour and kind on their own. Returns which
-// faces have every point id in range (the later phases read only those loops).
-std::vector<bool> check_faces(const PolyMesh& pm, ValidationReport& r) {
-  std::vector<bool> loop_in_range(pm.num_faces(), true);
-  std::vector<PointId> s;
-  for (std::size_t f = 0; f < pm.num_faces(); ++f) {
-    const auto loop = pm.face(FaceId(f));
-    s.assign(loop.begin(), loop.end());
-    std::sort(s.begin(), s.end());
-    loop_in_range[f] = s.empty() || s.back().idx < pm.num_points();
-    const CellId own = pm.face_owner[f], nb = pm.face_neighbour[f];
-    const bool bad = loop.size() < 3 || !loop_in_range[f] || std::adjacent_find(s.begin(), s.end()) != s.end() ||
-                     !own.valid() || own.idx >= pm.num_cells() || (nb.valid() && nb.idx >= pm.num_cells()) ||
-                     (pm.face_kind[f] == FaceKind::External) != !nb.valid();
-    r.face_errors += bad;
+// Whether loop has a point twice (a short loop by pairs, a long one sorted).
+bool has_repeated_point(std::span<const PointId> loop, std::vector<PointId>& sorted) {
+  if (loop.size() <= 16) {
+    for (std::size_t i = 1; i < loop.size(); ++i)
+      for (std::size_t j = 0; j < i; ++j)
+        if (loop[i] == loop[j]) return true;
+    return false;
   }
+  sorted.assign(loop.begin(), loop.end());
+  std::sort(sorted.begin(), sorted.end());
+  return std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end();
+}
+
+// Per face: its loop, owner, neighbour and kind on their own (in parallel;
+// the error count is a sum of integers). Returns which faces have every
+// point id in range (the later phases read only those loops).
+std::vector<char> check_faces(const PolyMesh& pm, ValidationReport& r) {
+  const std::size_t nf = pm.num_faces();
+  std::vector<char> loop_in_range(nf, 1);
+  tbb::enumerable_thread_specific<std::pair<std::size_t, std::vector<PointId>>> local;  // (errors, scratch)
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nf, 4096), [&](const auto& range) {
+    auto& [errors, sorted] = local.local();
+    for (std::size_t f = range.begin(); f != range.end(); ++f) {
+      const auto loop = pm.face(FaceId(f));
+      bool in_range = true;
+      for (PointId p : loop) in_range = in_range && p.idx < pm.num_points();
+      loop_in_range[f] = char(in_range);
+      const CellId own = pm.face_owner[f], nb = pm.face_neighbour[f];
+      const bool bad = loop.size() < 3 || !in_range || has_repeated_point(loop, sorted) || !own.valid() ||
+                       own.idx >= pm.num_cells() || (nb.valid() && nb.idx >= pm.num_cells()) ||
+                       (pm.face_kind[f] == FaceKind::External) != !nb.valid();
+      errors += bad;
+    }
+  });
+  for (const auto& [errors, sorted] : local) r.face_errors += errors;
   return loop_in_range;
 }
 
@@ -99,18 +118,33 @@ struct CellCheck {
   double volume = 0;  // when sound
 };
 
-// Per-thread scratch of check_cell: the edge keys (min << 32 | max) used
-// forward (min to max) and backward, and the faces seen.
+// Per-thread scratch of check_cell: per mesh point a stamp and its index
+// among the current cell's distinct points; the directed edge counts of a
+// small cell by those indices (kSmall x kSmall, zero between cells) and the
+// entries used; the edge keys (min << 32 | max) used forward (min to max) and
+// backward for a larger or unsound cell; the faces seen.
 struct CellScratch {
-  explicit CellScratch(const PolyMesh& pm) : points(pm) {}
+  static constexpr std::size_t kSmall = 64;
+  explicit CellScratch(const PolyMesh& pm) : stamp(pm.num_points(), 0), local(pm.num_points(), 0) {}
+  std::vector<std::uint32_t> stamp;
+  std::vector<std::uint8_t> local;
+  std::uint32_t gen = 0;
+  std::vector<PointId> points;
+  std::vector<std::uint32_t> count = std::vector<std::uint32_t>(kSmall * kSmall, 0);
+  std::vector<std::uint16_t> used;
   std::vector<std::uint64_t> forward, backward;
   std::vector<std::uint32_t> faces_seen;
-  CellPointScan points;
 };
 
 // Per edge key of the sorted forward and backward lists, its count in each:
 // closed when equal, manifold when they add up to 2, misoriented when they
 // differ by 2 or more.
+void add_edge_counts(std::size_t nf, std::size_t nb, CellCheck& r) {
+  r.closed &= nf == nb;
+  r.manifold &= nf + nb == 2;
+  r.misoriented |= nf >= nb + 2 || nb >= nf + 2;
+}
+
 void count_edge_uses(const std::vector<std::uint64_t>& fw, const std::vector<std::uint64_t>& bw, CellCheck& r) {
   std::size_t i = 0, j = 0;
   while (i < fw.size() || j < bw.size()) {
@@ -118,25 +152,65 @@ void count_edge_uses(const std::vector<std::uint64_t>& fw, const std::vector<std
     std::size_t nf = 0, nb = 0;
     for (; i < fw.size() && fw[i] == key; ++i) ++nf;
     for (; j < bw.size() && bw[j] == key; ++j) ++nb;
-    r.closed &= nf == nb;
-    r.manifold &= nf + nb == 2;
-    r.misoriented |= nf >= nb + 2 || nb >= nf + 2;
+    add_edge_counts(nf, nb, r);
   }
 }
 
-// Closed: every edge of the cell's oriented loops is used once in each
-// direction; manifold: by exactly two loops; slit: a face appears twice.
-CellCheck check_cell(const PolyMesh& pm, std::uint32_t c, const std::vector<bool>& loop_in_range, CellScratch& s) {
-  CellCheck r;
+// Calls fn(a, b) for every edge of cell c's oriented loops (mesh point ids).
+template <class Fn>
+void for_each_loop_edge(const PolyMesh& pm, std::uint32_t c, Fn&& fn) {
+  for (HalfFace h : pm.cell(CellId(c))) {
+    const auto f = pm.face(h.face());
+    const std::size_t n = f.size();
+    auto at = [&](std::size_t k) { return (h.side() == 0 ? f[k] : f[n - 1 - k]).idx; };
+    for (std::size_t k = 0; k < n; ++k) fn(at(k), at((k + 1) % n));
+  }
+}
+
+// Cell c's distinct points in cell_points order into s.points, each with its
+// index in s.local (when below kSmall). Every loop must be in range.
+void scan_points(const PolyMesh& pm, std::uint32_t c, CellScratch& s) {
+  if (++s.gen == 0) {  // wrapped: every stamp is stale
+    std::fill(s.stamp.begin(), s.stamp.end(), 0u);
+    s.gen = 1;
+  }
+  s.points.clear();
+  for (HalfFace h : pm.cell(CellId(c)))
+    for (PointId p : pm.face(h.face()))
+      if (s.stamp[p.idx] != s.gen) {
+        s.stamp[p.idx] = s.gen;
+        s.local[p.idx] = std::uint8_t(s.points.size() < CellScratch::kSmall ? s.points.size() : 0);
+        s.points.push_back(p);
+      }
+}
+
+// The edge uses of a sound cell of at most kSmall points, counted by local
+// index pairs (no sort): the same counts per unordered edge as the sorted
+// key lists (nf, nb are the two directions' counts, and every test is
+// symmetric in them). A loop edge from a point to itself counts backward
+// only, as in the sorted lists.
+void count_small_cell_edges(const PolyMesh& pm, std::uint32_t c, CellScratch& s, CellCheck& r) {
+  constexpr std::size_t K = CellScratch::kSmall;
+  s.used.clear();
+  for_each_loop_edge(pm, c, [&](std::uint32_t a, std::uint32_t b) {
+    const std::uint16_t i = std::uint16_t(s.local[a] * K + s.local[b]);
+    if (s.count[i]++ == 0) s.used.push_back(i);
+  });
+  for (std::uint16_t i : s.used) {
+    const std::size_t a = i / K, b = i % K;
+    if (a == b) add_edge_counts(0, s.count[i], r);
+    else add_edge_counts(s.count[i], s.count[b * K + a], r);
+  }
+  for (std::uint16_t i : s.used) s.count[i] = 0;
+}
+
+// The edge uses of any cell by sorted key lists (loops out of range skipped).
+void count_cell_edges_sorted(const PolyMesh& pm, std::uint32_t c, const std::vector<char>& loop_in_range,
+                             CellScratch& s, CellCheck& r) {
   s.forward.clear();
   s.backward.clear();
-  s.faces_seen.clear();
   for (HalfFace h : pm.cell(CellId(c))) {
-    if (h.face().idx >= pm.num_faces() || !loop_in_range[h.face().idx]) {
-      r.sound = false;
-      continue;
-    }
-    s.faces_seen.push_back(h.face().idx);
+    if (h.face().idx >= pm.num_faces() || !loop_in_range[h.face().idx]) continue;
     const auto f = pm.face(h.face());
     const std::size_t n = f.size();
     auto at = [&](std::size_t k) { return (h.side() == 0 ? f[k] : f[n - 1 - k]).idx; };
@@ -148,16 +222,36 @@ CellCheck check_cell(const PolyMesh& pm, std::uint32_t c, const std::vector<bool
   std::sort(s.forward.begin(), s.forward.end());
   std::sort(s.backward.begin(), s.backward.end());
   count_edge_uses(s.forward, s.backward, r);
+}
+
+// Closed: every edge of the cell's oriented loops is used once in each
+// direction; manifold: by exactly two loops; slit: a face appears twice.
+CellCheck check_cell(const PolyMesh& pm, std::uint32_t c, const std::vector<char>& loop_in_range, CellScratch& s) {
+  CellCheck r;
+  s.faces_seen.clear();
+  for (HalfFace h : pm.cell(CellId(c))) {
+    if (h.face().idx >= pm.num_faces() || !loop_in_range[h.face().idx]) {
+      r.sound = false;
+      continue;
+    }
+    s.faces_seen.push_back(h.face().idx);
+  }
   std::sort(s.faces_seen.begin(), s.faces_seen.end());
   r.slit = std::adjacent_find(s.faces_seen.begin(), s.faces_seen.end()) != s.faces_seen.end();
-  if (!r.sound) return r;
-  r.volume = volume_around(pm, CellId(c), s.points(CellId(c)));  // cell_points order
+  if (!r.sound) {
+    count_cell_edges_sorted(pm, c, loop_in_range, s, r);
+    return r;
+  }
+  scan_points(pm, c, s);
+  if (s.points.size() <= CellScratch::kSmall) count_small_cell_edges(pm, c, s, r);
+  else count_cell_edges_sorted(pm, c, loop_in_range, s, r);
+  r.volume = volume_around(pm, CellId(c), s.points);  // cell_points order
   return r;
 }
 
 // Every cell checked in parallel, then counted and summed in cell order (the
 // volumes' sums do not depend on the thread count).
-void check_cells(const PolyMesh& pm, const std::vector<bool>& loop_in_range, ValidationReport& r) {
+void check_cells(const PolyMesh& pm, const std::vector<char>& loop_in_range, ValidationReport& r) {
   const std::size_t nc = pm.num_cells();
   std::vector<CellCheck> checks(nc);
   tbb::enumerable_thread_specific<CellScratch> scratch(std::cref(pm));
@@ -181,7 +275,7 @@ void check_cells(const PolyMesh& pm, const std::vector<bool>& loop_in_range, Val
 
 // design §10: every model vertex is a dual point (at its place), every model edge
 // is covered by dual edges, every model face by dual faces with its tag.
-void check_model_entities(const PolyMesh& pm, const std::vector<bool>& loop_in_range,
+void check_model_entities(const PolyMesh& pm, const std::vector<char>& loop_in_range,
                           const ClassifiedTetMesh& primal, ValidationReport& r) {
   using Placed = std::tuple<std::int32_t, double, double, double>;  // (tag, x, y, z)
   std::set<Placed> model_vertices;
@@ -264,7 +358,7 @@ ValidationReport validate(const PolyMesh& pm, const ClassifiedTetMesh* primal, d
   r.cells = pm.num_cells();
   r.faces = pm.num_faces();
   r.points = pm.num_points();
-  const std::vector<bool> loop_in_range = check_faces(pm, r);
+  const std::vector<char> loop_in_range = check_faces(pm, r);
   check_half_face_references(pm, r);
   check_cells(pm, loop_in_range, r);
   if (primal) {
