@@ -393,4 +393,38 @@ TEST(DualCuts, BadCutSetsAreErrors) {
   short_off.tri.push_back(interior);
   short_off.off.back() = 1;
   expect_error(short_off, "offsets");
+  // Offsets that run past the list (read before any triangle of the vertex).
+  VertexCuts past = VertexCuts::from_pairs(m.num_vertices(), {});
+  past.tri = {interior, interior};
+  past.off.assign(m.num_vertices() + 1, 2);
+  past.off[0] = 0;
+  past.off[1] = 5;
+  expect_error(past, "offsets past the triangle list");
+  // A triangle listed twice, a triangle that does not exist.
+  const VertexId a = m.triangle(interior)[0];
+  VertexCuts twice = VertexCuts::from_pairs(m.num_vertices(), {{a, interior}});
+  twice.tri.push_back(interior);
+  for (std::size_t v = a.idx + 1; v < twice.off.size(); ++v) ++twice.off[v];
+  expect_error(twice, "triangles not increasing");
+  VertexCuts none = VertexCuts::from_pairs(m.num_vertices(), {{a, interior}});
+  none.tri[0] = TriId(std::uint32_t(m.num_triangles()));
+  expect_error(none, "no such triangle");
+  // Several bad vertices (checked in parallel): the error names the first.
+  std::vector<std::pair<VertexId, TriId>> bad;
+  VertexId first_bad = VertexId::invalid();
+  for (std::size_t v = 0; v < m.num_vertices(); ++v) {
+    const auto t = m.triangle(interior);
+    if (std::find(t.begin(), t.end(), VertexId(v)) != t.end()) continue;
+    if (!first_bad.valid()) first_bad = VertexId(v);
+    bad.emplace_back(VertexId(v), interior);
+  }
+  ASSERT_GE(bad.size(), 2u);
+  const VertexCuts many = VertexCuts::from_pairs(m.num_vertices(), bad);
+  try {
+    build_dual(m, {}, nullptr, &many);
+    ADD_FAILURE() << "no error for several bad vertices";
+  } catch (const InputError& e) {
+    const std::string want = "vertex cuts of vertex " + std::to_string(m.input_vertex(first_bad)) + ",";
+    EXPECT_NE(std::string(e.what()).find(want), std::string::npos) << e.what();
+  }
 }

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <bit>
 #include <chrono>
+#include <functional>
 #include <limits>
 #include <memory>
 
@@ -19,6 +20,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 #include <tbb/parallel_pipeline.h>
+#include <tbb/parallel_reduce.h>
 
 #include "core/bits.h"
 #include "core/error.h"
@@ -60,11 +62,17 @@ class SparsePoints {
   // Calls f(i, rank of i) for the set entities in increasing order (64 at a
   // time: the unset ones cost nothing).
   template <class F>
-  void for_each(F&& f) const {
-    std::uint32_t r = 0;
-    for (std::size_t b = 0; b < bits_.size(); ++b)
+  void for_each(F&& f) const { for_each_in_words(0, bits_.size(), f); }
+  // The same for the entities of words [w0, w1) (64 entities a word; after
+  // finish()): disjoint word ranges can run in parallel, as can set() on them.
+  template <class F>
+  void for_each_in_words(std::size_t w0, std::size_t w1, F&& f) const {
+    std::uint32_t r = w0 < prefix_.size() ? prefix_[w0] : 0;
+    for (std::size_t b = w0; b < w1; ++b)
       for (std::uint64_t w = bits_[b]; w != 0; w &= w - 1) f(64 * b + std::size_t(std::countr_zero(w)), r++);
   }
+  std::size_t num_words() const { return bits_.size(); }
+  std::uint32_t count() const { return prefix_.empty() ? 0 : prefix_.back() + std::uint32_t(popcount64(bits_.back())); }
 
  private:
   std::vector<std::uint64_t> bits_;
@@ -118,24 +126,48 @@ DualPoints make_points(const ClassifiedTetMesh& m, const CutTopology& ct, PolyMe
   st.well_centred_tets = std::size_t(std::count_if(d.tet_centre_error.begin(), d.tet_centre_error.end(),
                                                    [](double e) { return e >= 0; }));
   st.clamped_tets = nt - st.well_centred_tets;
+  // The model-face and cut triangles' centres: which ones first (disjoint
+  // 64-triangle words in parallel), then their centres in parallel, each
+  // written at its rank (the same points, in triangle order, for any thread
+  // count).
   d.tri_point.init(m.num_triangles());
+  const std::size_t num_words = d.tri_point.num_words();
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_words, 256), [&](const auto& r) {
+    const std::size_t f1 = std::min(m.num_triangles(), 64 * r.end());
+    for (std::size_t f = 64 * r.begin(); f < f1; ++f)
+      if (m.on_model_face(TriId(f)) || ct.is_cut(TriId(f))) d.tri_point.set(f);
+  });
   const std::uint32_t first_tri_point = std::uint32_t(pm.num_points());
-  for (std::size_t f = 0; f < m.num_triangles(); ++f) {
-    const bool model = m.on_model_face(TriId(f));
-    if (!model && !ct.is_cut(TriId(f))) continue;
-    const auto& v = m.triangle(TriId(f));
-    CentralPoint c = triangle_central_point(m.point(v[0]), m.point(v[1]), m.point(v[2]));
-    if (pin && pinned(m, ct.cuts, PointOrigin{2, std::uint32_t(f)})) {
-      c.p = barycentre(m, PointOrigin{2, std::uint32_t(f)});
-      c.well_centred = false;
-    }
-    add(c.p, model ? m.triangle_class(TriId(f)) : ModelRef{3, m.region(m.triangle_tet(TriId(f), 0))}, 2, f);
-    d.tri_point.set(f);
-    // A cut triangle's centre is never merged (cleanup_dual: no merge across cuts).
-    d.tri_well_centred.push_back(model && c.well_centred);
-    (c.well_centred ? st.well_centred_triangles : st.clamped_triangles)++;
-  }
   d.tri_point.finish(first_tri_point);
+  const std::size_t num_tri_points = d.tri_point.count();
+  pm.points.resize(first_tri_point + num_tri_points);
+  pm.point_class.resize(first_tri_point + num_tri_points);
+  pm.point_origin.resize(first_tri_point + num_tri_points);
+  d.tri_well_centred.resize(num_tri_points);
+  const std::size_t well_centred = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, num_words, 256), std::size_t(0),
+      [&](const tbb::blocked_range<std::size_t>& r, std::size_t n) {
+        d.tri_point.for_each_in_words(r.begin(), r.end(), [&](std::size_t f, std::uint32_t rank) {
+          const bool model = m.on_model_face(TriId(f));
+          const auto& v = m.triangle(TriId(f));
+          CentralPoint c = triangle_central_point(m.point(v[0]), m.point(v[1]), m.point(v[2]));
+          if (pin && pinned(m, ct.cuts, PointOrigin{2, std::uint32_t(f)})) {
+            c.p = barycentre(m, PointOrigin{2, std::uint32_t(f)});
+            c.well_centred = false;
+          }
+          const std::size_t p = first_tri_point + rank;
+          pm.points[p] = c.p;
+          pm.point_class[p] = model ? m.triangle_class(TriId(f)) : ModelRef{3, m.region(m.triangle_tet(TriId(f), 0))};
+          pm.point_origin[p] = PointOrigin{2, std::uint32_t(f)};
+          // A cut triangle's centre is never merged (cleanup_dual: no merge across cuts).
+          d.tri_well_centred[rank] = char(model && c.well_centred);
+          n += c.well_centred;
+        });
+        return n;
+      },
+      std::plus<std::size_t>());
+  st.well_centred_triangles += well_centred;
+  st.clamped_triangles += num_tri_points - well_centred;
   d.edge_point.init(m.num_edges());
   const std::uint32_t first_edge_point = std::uint32_t(pm.num_points());
   for (std::size_t e = 0; e < m.num_edges(); ++e) {
@@ -153,7 +185,9 @@ DualPoints make_points(const ClassifiedTetMesh& m, const CutTopology& ct, PolyMe
     }
   if (pin) {
     d.pinned.resize(pm.num_points());
-    for (std::size_t p = 0; p < pm.num_points(); ++p) d.pinned[p] = char(pinned(m, ct.cuts, pm.point_origin[p]));
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pm.num_points(), 8192), [&](const auto& r) {
+      for (std::size_t p = r.begin(); p < r.end(); ++p) d.pinned[p] = char(pinned(m, ct.cuts, pm.point_origin[p]));
+    });
   }
   return d;
 }

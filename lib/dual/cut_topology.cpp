@@ -1,6 +1,11 @@
 #include "dual/cut_topology.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
 #include <algorithm>
+#include <atomic>
 #include <string>
 
 #include "core/error.h"
@@ -9,6 +14,28 @@ namespace polydual {
 
 namespace {
 
+// The first problem of vertex v's cut set (null: none); `at` is then the
+// position in c.tri of the triangle it is about, or c.tri.size() + 1 when it
+// is about the offsets.
+const char* vertex_cut_problem(const ClassifiedTetMesh& m, const VertexCuts& c, std::size_t v, std::size_t& at) {
+  at = c.tri.size() + 1;
+  if (c.off[v + 1] < c.off[v]) return "offsets decrease";
+  if (c.off[v + 1] > c.tri.size()) return "offsets past the triangle list";
+  for (std::uint32_t k = c.off[v]; k < c.off[v + 1]; ++k) {
+    at = k;
+    const TriId f = c.tri[k];
+    if (f.idx >= m.num_triangles()) return "no such triangle";
+    if (k > c.off[v] && !(c.tri[k - 1].idx < f.idx)) return "triangles not increasing";
+    const auto t = m.triangle(f);
+    if (std::find(t.begin(), t.end(), VertexId(std::uint32_t(v))) == t.end())
+      return "the triangle does not contain the vertex";
+    if (m.on_model_face(f)) return "the triangle is on a model face (a cut must be virtual)";
+  }
+  return nullptr;
+}
+
+// The vertices are checked in parallel; the error thrown is the one of the
+// first bad vertex (the same for any thread count, and as a serial walk).
 void check_cuts(const ClassifiedTetMesh& m, const VertexCuts& c) {
   const std::string src = m.source();
   const std::size_t nv = m.num_vertices();
@@ -20,20 +47,21 @@ void check_cuts(const ClassifiedTetMesh& m, const VertexCuts& c) {
                                              std::to_string(nv));
   if (c.off[0] != 0 || c.off[nv] != c.tri.size())
     throw InputError(src, "vertex cuts", "offsets do not span the triangle list");
-  for (std::size_t v = 0; v < nv; ++v) {
-    const std::string place = "vertex cuts of vertex " + std::to_string(m.input_vertex(VertexId(v)));
-    if (c.off[v + 1] < c.off[v]) throw InputError(src, place, "offsets decrease");
-    for (std::uint32_t k = c.off[v]; k < c.off[v + 1]; ++k) {
-      const TriId f = c.tri[k];
-      const std::string at = place + ", triangle " + std::to_string(f.idx);
-      if (f.idx >= m.num_triangles()) throw InputError(src, at, "no such triangle");
-      if (k > c.off[v] && !(c.tri[k - 1].idx < f.idx)) throw InputError(src, at, "triangles not increasing");
-      const auto t = m.triangle(f);
-      if (std::find(t.begin(), t.end(), VertexId(v)) == t.end())
-        throw InputError(src, at, "the triangle does not contain the vertex");
-      if (m.on_model_face(f)) throw InputError(src, at, "the triangle is on a model face (a cut must be virtual)");
-    }
-  }
+  const std::size_t first_bad = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, nv, 4096), nv,
+      [&](const tbb::blocked_range<std::size_t>& r, std::size_t best) {
+        std::size_t at;
+        for (std::size_t v = r.begin(); v < r.end() && v < best; ++v)
+          if (vertex_cut_problem(m, c, v, at)) return v;
+        return best;
+      },
+      [](std::size_t x, std::size_t y) { return std::min(x, y); });
+  if (first_bad == nv) return;
+  std::size_t at;
+  const char* what = vertex_cut_problem(m, c, first_bad, at);
+  std::string place = "vertex cuts of vertex " + std::to_string(m.input_vertex(VertexId(std::uint32_t(first_bad))));
+  if (at < c.tri.size()) place += ", triangle " + std::to_string(c.tri[at].idx);
+  throw InputError(src, place, what);
 }
 
 // Whether edge e is a stop edge, and whether a cap of each end ends on it
@@ -101,38 +129,56 @@ CutTopology cut_topology(const ClassifiedTetMesh& m, const VertexCuts* cuts) {
   check_cuts(m, *cuts);
   ct.active = true;
   ct.cuts = cuts;
+  // Each phase in parallel; the bits are set by atomic ORs, so the masks are
+  // the same for any thread count and order.
   ct.tri_mask.assign(m.num_triangles(), 0);
-  for (std::size_t v = 0; v < m.num_vertices(); ++v)
-    for (TriId f : cuts->of(VertexId(v))) {
-      const auto t = m.triangle(f);
-      for (int i = 0; i < 3; ++i)
-        if (t[i] == VertexId(v)) ct.tri_mask[f.idx] |= std::uint8_t(1u << i);
-    }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m.num_vertices(), 4096), [&](const auto& r) {
+    for (std::size_t v = r.begin(); v < r.end(); ++v)
+      for (TriId f : cuts->of(VertexId(v))) {
+        const auto t = m.triangle(f);
+        for (int i = 0; i < 3; ++i)
+          if (t[i] == VertexId(v)) std::atomic_ref<std::uint8_t>(ct.tri_mask[f.idx]).fetch_or(std::uint8_t(1u << i), std::memory_order_relaxed);
+      }
+  });
   // The edges of every cut triangle have a cut in their ring.
   ct.edge_bits.assign(m.num_edges(), 0);
-  for (std::size_t f = 0; f < ct.tri_mask.size(); ++f) {
-    if (ct.tri_mask[f] == 0) continue;
-    const auto t = m.triangle(TriId(f));
-    for (int i = 0; i < 3; ++i)
-      ct.edge_bits[m.triangle_edge(TriId(f), t[i], t[(i + 1) % 3]).idx] |= CutTopology::kRingCut;
-  }
-  // Stop edges; per vertex the number of stop edges on which one of its caps
-  // ends (saturating at 3: only ">= 3" matters).
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ct.tri_mask.size(), 16384), [&](const auto& r) {
+    for (std::size_t f = r.begin(); f < r.end(); ++f) {
+      if (ct.tri_mask[f] == 0) continue;
+      const auto t = m.triangle(TriId(f));
+      for (int i = 0; i < 3; ++i)
+        std::atomic_ref<std::uint8_t>(ct.edge_bits[m.triangle_edge(TriId(f), t[i], t[(i + 1) % 3]).idx])
+            .fetch_or(CutTopology::kRingCut, std::memory_order_relaxed);
+    }
+  });
+  // Stop edges (each edge writes its own bits), with two passing bits: a cap
+  // of end a (kCapsA), of end b (kCapsB) ends on it. Then, serially, per
+  // vertex the number of stop edges on which one of its caps ends
+  // (saturating at 3: only ">= 3" matters), clearing the passing bits.
+  constexpr std::uint8_t kCapsA = 4, kCapsB = 8;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m.num_edges(), 8192), [&](const auto& r) {
+    std::vector<TetId> ring;
+    std::vector<TriId> tris;
+    for (std::size_t ei = r.begin(); ei < r.end(); ++ei) {
+      const EdgeId e(ei);
+      const auto [a, b] = m.edge(e);
+      const bool model_edge = m.edge_class(e).dim == 1;
+      const bool whole = cuts->is_whole(a) || cuts->is_whole(b);
+      if (!model_edge && !whole && cuts->of(a).empty() && cuts->of(b).empty()) continue;
+      EdgeStop s = edge_stop(m, ct, e, ring, tris);
+      s.stop = s.stop || whole;  // C5: every edge of a whole vertex has its midpoint
+      if (!s.stop) continue;
+      ct.edge_bits[ei] |= std::uint8_t(CutTopology::kStop | (s.caps_a ? kCapsA : 0) | (s.caps_b ? kCapsB : 0));
+    }
+  });
   std::vector<std::uint8_t> ends(m.num_vertices(), 0);
-  std::vector<TetId> ring;
-  std::vector<TriId> tris;
   for (std::size_t ei = 0; ei < m.num_edges(); ++ei) {
-    const EdgeId e(ei);
-    const auto [a, b] = m.edge(e);
-    const bool model_edge = m.edge_class(e).dim == 1;
-    const bool whole = cuts->is_whole(a) || cuts->is_whole(b);
-    if (!model_edge && !whole && cuts->of(a).empty() && cuts->of(b).empty()) continue;
-    EdgeStop s = edge_stop(m, ct, e, ring, tris);
-    s.stop = s.stop || whole;  // C5: every edge of a whole vertex has its midpoint
-    if (!s.stop) continue;
-    ct.edge_bits[ei] |= CutTopology::kStop;
-    if (s.caps_a && ends[a.idx] < 3) ++ends[a.idx];
-    if (s.caps_b && ends[b.idx] < 3) ++ends[b.idx];
+    std::uint8_t& bits = ct.edge_bits[ei];
+    if (!(bits & CutTopology::kStop)) continue;
+    const auto [a, b] = m.edge(EdgeId(ei));
+    if ((bits & kCapsA) && ends[a.idx] < 3) ++ends[a.idx];
+    if ((bits & kCapsB) && ends[b.idx] < 3) ++ends[b.idx];
+    bits &= std::uint8_t(~(kCapsA | kCapsB));
   }
   ct.vertex_point.assign(m.num_vertices(), 0);
   for (std::size_t v = 0; v < m.num_vertices(); ++v)
