@@ -1,7 +1,7 @@
 // The split's local rounds (split/local_round.h, proofs/split.md L5): on
 // random classified meshes with free-edge cuts and vertices cut whole, the
 // sub-mesh carries the whole mesh's classification (mesh/sub_mesh.h), every
-// cell of a vertex of N[D] in the sub-mesh's dual is, half-face by half-face
+// cell of a vertex of N[D] not cut whole in the sub-mesh's dual is, half-face by half-face
 // and coordinate by coordinate, the same cell of the whole mesh's dual, and
 // local_round's invalid counts are those of the whole mesh's exact check.
 #include "split/local_round.h"
@@ -121,7 +121,16 @@ TEST(LocalRound, CellsAndVerdictsAreThoseOfTheWholeDual) {
     // and on the whole mesh, scoped (share 0).
     for (double share : {1.0, 0.0}) {
       const LocalDual ld = local_dual(m, fe, whole, d, dp, collapse, share);
-      ASSERT_EQ(ld.on_whole_mesh, share == 0.0);
+      // U: the vertices not cut whole next to one that is (none when every
+      // vertex is whole: nothing to build).
+      bool any_u = false;
+      for (std::size_t t = 0; t < m.num_tets() && !any_u; ++t) {
+        bool has_whole = false, has_other = false;
+        for (VertexId w : m.tet(TetId(t))) (whole[w.idx] ? has_whole : has_other) = true;
+        any_u = has_whole && has_other;
+      }
+      ASSERT_EQ(ld.on_whole_mesh, share == 0.0 && any_u) << what;
+      ASSERT_EQ(std::count(ld.active.begin(), ld.active.end(), char(1)) > 0, any_u) << what;
       const auto in_local = cells_by_vertex(ld.dual, m.num_vertices());
       for (std::size_t v = 0; v < ld.active.size(); ++v) {
         if (!ld.active[v]) continue;
@@ -154,16 +163,22 @@ TEST(LocalRound, CellsAndVerdictsAreThoseOfTheWholeDual) {
       invalid_seen += bad;
       changed_verdicts += (bad > 0) != (bad_before > 0);
     }
-    // Every vertex with a cell whose verdict the cuts changed is in N[D].
+    // The round tests no vertex cut whole (barycentric corners), and every
+    // other vertex with an invalid cell is in U = N[D] minus those.
     std::vector<char> in_u(m.num_vertices(), 0);
-    for (VertexId v : lr.vertices) in_u[v.idx] = 1;
-    for (std::size_t c = 0; c < full.num_cells(); ++c)
-      if (!full_check.verdicts[c].valid) EXPECT_TRUE(in_u[internal[full.cell_primal[c].idx].idx]) << what;
+    for (VertexId v : lr.vertices) {
+      EXPECT_FALSE(whole[v.idx]) << what << " vertex " << m.input_vertex(v);
+      in_u[v.idx] = 1;
+    }
+    for (std::size_t c = 0; c < full.num_cells(); ++c) {
+      const VertexId v = internal[full.cell_primal[c].idx];
+      if (!full_check.verdicts[c].valid && !whole[v.idx]) EXPECT_TRUE(in_u[v.idx]) << what;
+    }
     if (HasFailure()) break;
   }
   // The comparison ran on many cells, some of them invalid, and the cuts
   // changed verdicts (a local round that returned the old verdicts fails).
-  EXPECT_GT(compared, 4000u);
+  EXPECT_GT(compared, 2500u);  // cells of vertices not cut whole
   EXPECT_GT(invalid_seen, 0u);
   EXPECT_GT(changed_verdicts, 10u);
   std::cout << "cells compared " << compared << ", invalid " << invalid_seen << ", vertices whose validity changed "

@@ -209,6 +209,9 @@ int run_local_rounds(ConvertResult& r, SplitState& st, const PipelineParams& par
   int k = 0;
   while (!raised.empty()) {
     throw_if_interrupted();
+    // The cells of a vertex cut whole are barycentric corners, not tested by
+    // the local rounds (split/local_round.h); the final whole build does.
+    for (VertexId d : raised) bad[d.idx] = 0;
     const LocalRound lr = local_round(r.primal, st.free_edge, st.whole, raised, params.dual, collapse);
     for (std::size_t i = 0; i < lr.vertices.size(); ++i) bad[lr.vertices[i].idx] = lr.invalid[i];
     std::size_t invalid = 0;

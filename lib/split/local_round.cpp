@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <string>
 
 #include "core/stopwatch.h"
 #include "mesh/sub_mesh.h"
@@ -12,13 +13,13 @@ namespace polydual {
 
 namespace {
 
-// N[changed], increasing.
+// N[changed] without the vertices cut whole, increasing.
 std::vector<VertexId> closed_neighbourhood(const ClassifiedTetMesh& m, std::span<const VertexId> changed,
-                                           std::vector<char>& mark) {
+                                           std::span<const char> whole, std::vector<char>& mark) {
   mark.assign(m.num_vertices(), 0);
   for (VertexId d : changed)
     for (TetId t : m.vertex_tets(d))
-      for (VertexId w : m.tet(t)) mark[w.idx] = 1;
+      for (VertexId w : m.tet(t)) mark[w.idx] = !whole[w.idx];
   std::vector<VertexId> out;
   for (std::size_t v = 0; v < mark.size(); ++v)
     if (mark[v]) out.push_back(VertexId(v));
@@ -70,10 +71,17 @@ LocalDual local_dual(const ClassifiedTetMesh& m, const VertexCuts& free_edge, st
     ld.seconds.set(part, w.seconds());
     w = Stopwatch();
   };
+  if (whole.size() != m.num_vertices())
+    throw std::logic_error("local_dual: " + std::to_string(whole.size()) + " whole flags for " +
+                           std::to_string(m.num_vertices()) + " vertices");
   std::vector<char> in_u;
-  const std::vector<VertexId> u = closed_neighbourhood(m, changed, in_u);
-  std::vector<TetId> tets = star_tets(m, u);
+  const std::vector<VertexId> u = closed_neighbourhood(m, changed, whole, in_u);
   LocalDual out;
+  if (u.empty()) {  // every neighbour cut whole: no cell to build (an empty sub-mesh)
+    lap(out, "sub_mesh");
+    return out;
+  }
+  std::vector<TetId> tets = star_tets(m, u);
   out.on_whole_mesh = double(tets.size()) > whole_mesh_share * double(m.num_tets());
   if (out.on_whole_mesh) {
     out.active = std::move(in_u);
@@ -89,8 +97,11 @@ LocalDual local_dual(const ClassifiedTetMesh& m, const VertexCuts& free_edge, st
   const VertexCuts cuts = local_cuts(out, m, out.on_whole_mesh ? free_edge : sub_free, whole);
   lap(out, "cuts");
   const DualScope scope{out.active, collapse_length};
-  out.dual = build_dual(out.mesh(m), params, nullptr, &cuts, &scope);
+  DualStats ds;
+  out.dual = build_dual(out.mesh(m), params, &ds, &cuts, &scope);
   lap(out, "dual");
+  const Json parts = ds.to_json();
+  out.seconds.set("dual_parts", *parts.find("seconds"));
   return out;
 }
 

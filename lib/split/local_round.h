@@ -1,9 +1,13 @@
 // A local round of the split loop (split/split.h, pipeline/convert.cpp): after
-// the vertices D are newly cut whole, only the cells of U = N[D] (D and its
+// the vertices D are newly cut whole, only the cells of N[D] (D and its
 // neighbours) can change (every point, face and side of a cell of w reads
 // only the tets of star(w), and a tet of star(w) holds a vertex of D only if
-// w is in N[D]; proofs/split.md, L5). So the round builds the dual of the
-// sub-mesh star(U) (mesh/sub_mesh.h) with the faces of U's cells only
+// w is in N[D]; proofs/split.md, L5). Of those, the cells of vertices cut
+// whole are barycentric corners, convex by construction (proofs/dual_cuts.md
+// C5): whatever their verdict, their vertex cannot be cut further, so a
+// round does not build or test them (the final whole build does, exactly).
+// So the round builds the dual of the sub-mesh star(U), U = N[D] without the
+// vertices cut whole (mesh/sub_mesh.h), with the faces of U's cells only
 // (dual/build_dual.h, DualScope) and star-tests U's cells, instead of
 // rebuilding and rechecking the whole dual. Its verdicts only choose which
 // vertices the next round cuts: the mesh returned is one whole build, checked
@@ -21,13 +25,14 @@
 
 namespace polydual {
 
-// The sub-mesh star(N[changed]), its active vertices (those of N[changed])
+// The sub-mesh star(U), U = N[changed] without the vertices marked in
+// `whole`, its active vertices (those of U)
 // and its dual with the faces of the active vertices' cells only, built with
 // the whole mesh's cuts restricted to it: the free-edge cuts of every vertex
 // (the triangles with both tets in the sub-mesh) and the whole cuts of the
 // vertices marked in `whole` (per vertex of m). collapse_length: the whole
 // mesh's (dual_collapse_length), so the sub-mesh collapses what the whole mesh
-// does. When star(N[changed]) holds more than whole_mesh_share of m's tets,
+// does. When star(U) holds more than whole_mesh_share of m's tets,
 // m itself is used (no copy; the same scope and cuts): a copy of most of the
 // mesh costs more than it saves. Either way the k-th cell of an active vertex
 // is the k-th cell of that vertex in the whole mesh's dual (proofs/split.md
@@ -49,7 +54,7 @@ LocalDual local_dual(const ClassifiedTetMesh& m, const VertexCuts& free_edge, st
                      double whole_mesh_share = kWholeMeshShare);
 
 struct LocalRound {
-  std::vector<VertexId> vertices;      // U = N[D], increasing (the whole mesh's numbering)
+  std::vector<VertexId> vertices;      // U = N[D] without the whole vertices, increasing (the whole mesh's numbering)
   std::vector<std::uint32_t> invalid;  // per vertex of U, its cells the star test found invalid
   std::size_t tets = 0;                // of the mesh the dual is of
   bool on_whole_mesh = false;
