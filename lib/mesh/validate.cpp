@@ -118,18 +118,16 @@ struct CellCheck {
   double volume = 0;  // when sound
 };
 
-// Per-thread scratch of check_cell: per mesh point a stamp and its index
-// among the current cell's distinct points; the directed edge counts of a
-// small cell by those indices (kSmall x kSmall, zero between cells) and the
-// entries used; the edge keys (min << 32 | max) used forward (min to max) and
-// backward for a larger or unsound cell; the faces seen.
+// Per-thread scratch of check_cell: the cell's distinct points (stamps) and,
+// for a small cell, each point's index among them; the directed edge counts
+// of a small cell by those indices (kSmall x kSmall, zero between cells) and
+// the entries used; the edge keys (min << 32 | max) used forward (min to max)
+// and backward for a larger or unsound cell; the faces seen.
 struct CellScratch {
   static constexpr std::size_t kSmall = 64;
-  explicit CellScratch(const PolyMesh& pm) : stamp(pm.num_points(), 0), local(pm.num_points(), 0) {}
-  std::vector<std::uint32_t> stamp;
+  explicit CellScratch(const PolyMesh& pm) : points(pm), local(pm.num_points(), 0) {}
+  CellPointScan points;
   std::vector<std::uint8_t> local;
-  std::uint32_t gen = 0;
-  std::vector<PointId> points;
   std::vector<std::uint32_t> count = std::vector<std::uint32_t>(kSmall * kSmall, 0);
   std::vector<std::uint16_t> used;
   std::vector<std::uint64_t> forward, backward;
@@ -156,10 +154,12 @@ void count_edge_uses(const std::vector<std::uint64_t>& fw, const std::vector<std
   }
 }
 
-// Calls fn(a, b) for every edge of cell c's oriented loops (mesh point ids).
+// Calls fn(a, b) for every edge of cell c's oriented loops (mesh point ids),
+// skipping the loops not in range.
 template <class Fn>
-void for_each_loop_edge(const PolyMesh& pm, std::uint32_t c, Fn&& fn) {
+void for_each_loop_edge(const PolyMesh& pm, std::uint32_t c, const std::vector<char>& loop_in_range, Fn&& fn) {
   for (HalfFace h : pm.cell(CellId(c))) {
+    if (h.face().idx >= pm.num_faces() || !loop_in_range[h.face().idx]) continue;
     const auto f = pm.face(h.face());
     const std::size_t n = f.size();
     auto at = [&](std::size_t k) { return (h.side() == 0 ? f[k] : f[n - 1 - k]).idx; };
@@ -167,32 +167,17 @@ void for_each_loop_edge(const PolyMesh& pm, std::uint32_t c, Fn&& fn) {
   }
 }
 
-// Cell c's distinct points in cell_points order into s.points, each with its
-// index in s.local (when below kSmall). Every loop must be in range.
-void scan_points(const PolyMesh& pm, std::uint32_t c, CellScratch& s) {
-  if (++s.gen == 0) {  // wrapped: every stamp is stale
-    std::fill(s.stamp.begin(), s.stamp.end(), 0u);
-    s.gen = 1;
-  }
-  s.points.clear();
-  for (HalfFace h : pm.cell(CellId(c)))
-    for (PointId p : pm.face(h.face()))
-      if (s.stamp[p.idx] != s.gen) {
-        s.stamp[p.idx] = s.gen;
-        s.local[p.idx] = std::uint8_t(s.points.size() < CellScratch::kSmall ? s.points.size() : 0);
-        s.points.push_back(p);
-      }
-}
-
 // The edge uses of a sound cell of at most kSmall points, counted by local
 // index pairs (no sort): the same counts per unordered edge as the sorted
 // key lists (nf, nb are the two directions' counts, and every test is
 // symmetric in them). A loop edge from a point to itself counts backward
 // only, as in the sorted lists.
-void count_small_cell_edges(const PolyMesh& pm, std::uint32_t c, CellScratch& s, CellCheck& r) {
+void count_small_cell_edges(const PolyMesh& pm, std::uint32_t c, const std::vector<char>& loop_in_range,
+                            std::span<const PointId> points, CellScratch& s, CellCheck& r) {
   constexpr std::size_t K = CellScratch::kSmall;
+  for (std::size_t i = 0; i < points.size(); ++i) s.local[points[i].idx] = std::uint8_t(i);
   s.used.clear();
-  for_each_loop_edge(pm, c, [&](std::uint32_t a, std::uint32_t b) {
+  for_each_loop_edge(pm, c, loop_in_range, [&](std::uint32_t a, std::uint32_t b) {
     const std::uint16_t i = std::uint16_t(s.local[a] * K + s.local[b]);
     if (s.count[i]++ == 0) s.used.push_back(i);
   });
@@ -209,16 +194,9 @@ void count_cell_edges_sorted(const PolyMesh& pm, std::uint32_t c, const std::vec
                              CellScratch& s, CellCheck& r) {
   s.forward.clear();
   s.backward.clear();
-  for (HalfFace h : pm.cell(CellId(c))) {
-    if (h.face().idx >= pm.num_faces() || !loop_in_range[h.face().idx]) continue;
-    const auto f = pm.face(h.face());
-    const std::size_t n = f.size();
-    auto at = [&](std::size_t k) { return (h.side() == 0 ? f[k] : f[n - 1 - k]).idx; };
-    for (std::size_t k = 0; k < n; ++k) {
-      const std::uint32_t a = at(k), b = at((k + 1) % n);
-      (a < b ? s.forward : s.backward).push_back((std::uint64_t(std::min(a, b)) << 32) | std::max(a, b));
-    }
-  }
+  for_each_loop_edge(pm, c, loop_in_range, [&](std::uint32_t a, std::uint32_t b) {
+    (a < b ? s.forward : s.backward).push_back((std::uint64_t(std::min(a, b)) << 32) | std::max(a, b));
+  });
   std::sort(s.forward.begin(), s.forward.end());
   std::sort(s.backward.begin(), s.backward.end());
   count_edge_uses(s.forward, s.backward, r);
@@ -242,10 +220,10 @@ CellCheck check_cell(const PolyMesh& pm, std::uint32_t c, const std::vector<char
     count_cell_edges_sorted(pm, c, loop_in_range, s, r);
     return r;
   }
-  scan_points(pm, c, s);
-  if (s.points.size() <= CellScratch::kSmall) count_small_cell_edges(pm, c, s, r);
+  const std::span<const PointId> points = s.points(CellId(c));  // cell_points order
+  if (points.size() <= CellScratch::kSmall) count_small_cell_edges(pm, c, loop_in_range, points, s, r);
   else count_cell_edges_sorted(pm, c, loop_in_range, s, r);
-  r.volume = volume_around(pm, CellId(c), s.points);  // cell_points order
+  r.volume = volume_around(pm, CellId(c), points);
   return r;
 }
 
