@@ -15,7 +15,13 @@
 //    from $POLYDUAL_BENCH_RANDOM_SIZES (default 10000,100000,1000000): is the
 //    cost per tet flat in the mesh size?
 //  - Star*: the star test's decomposition tets, exact (filtered) vs plain
-//    doubles, ns per tet and the share that reached the exact path.
+//    doubles, ns per tet and the share that reached the exact path;
+//  - Stencil: the optimisers' and quality metrics' flat topology
+//    (build_stencil), ms per build;
+//  - Untangle: optimize(Untangle) on the raw dual with its verdicts known, as
+//    `convert --optimize untangle` runs it, against issue 14's budget
+//    (classify + dual + one star test of the same mesh, timed in the same
+//    iterations): ms of each (fastest iteration) and their ratio (<= 1 meets it).
 #include <benchmark/benchmark.h>
 #include <malloc.h>
 #include <sys/resource.h>
@@ -36,7 +42,9 @@
 #include "generate/domains.h"
 #include "generate/random_mesh.h"
 #include "io/read_tet_mesh.h"
+#include "optim/optimize.h"
 #include "predicates/predicates.h"
+#include "quality/star_verdict.h"
 #include "quality/stencil.h"
 
 namespace polydual {
@@ -230,6 +238,47 @@ void BM_Star(benchmark::State& st, Domain d, std::size_t n) {
   }
 }
 
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+void BM_Stencil(benchmark::State& st, Domain d, std::size_t n) {
+  const PolyMesh pm = build_dual(classify(soup_for(d, n)));
+  double best = 1e300;
+  for (auto _ : st) {
+    const auto t0 = Clock::now();
+    MeshStencil s = build_stencil(pm);
+    best = std::min(best, seconds_since(t0));
+    benchmark::DoNotOptimize(s.point_cells.data());
+  }
+  st.counters["cells"] = double(pm.num_cells());
+  st.counters["ms_best"] = best * 1e3;
+}
+
+void BM_Untangle(benchmark::State& st, Domain d, std::size_t n) {
+  const TetSoup& soup = soup_for(d, n);
+  OptimParams p;
+  p.method = OptimParams::Method::Untangle;
+  double best_budget = 1e300, best_opt = 1e300;
+  OptimReport rep;
+  for (auto _ : st) {
+    const auto t0 = Clock::now();
+    const ClassifiedTetMesh m = classify(soup);
+    PolyMesh pm = build_dual(m);
+    const std::vector<CellVerdict> verdicts = star_shaped_verdicts(pm);
+    best_budget = std::min(best_budget, seconds_since(t0));
+    const auto t1 = Clock::now();
+    rep = optimize(pm, &m, p, {}, {}, verdicts);
+    best_opt = std::min(best_opt, seconds_since(t1));
+    benchmark::DoNotOptimize(pm.points.data());
+  }
+  st.counters["invalid_before"] = rep.invalid_before;
+  st.counters["invalid_after"] = rep.invalid_after;
+  st.counters["vertex_updates"] = double(rep.vertex_updates);
+  st.counters["budget_ms"] = best_budget * 1e3;
+  st.counters["untangle_ms"] = best_opt * 1e3;
+  st.counters["ratio"] = best_opt / best_budget;
+}
+
 const bool registered = [] {
   for (std::size_t n : sizes())
     for (Domain d : {Domain::Cube, Domain::TwoMat, Domain::Fichera, Domain::Fracture}) {
@@ -244,6 +293,10 @@ const bool registered = [] {
           ->Unit(benchmark::kMillisecond)->MinTime(1.0);
       benchmark::RegisterBenchmark(("StarDouble/" + tag).c_str(), BM_Star<false>, d, n)
           ->Unit(benchmark::kMillisecond)->MinTime(1.0);
+      benchmark::RegisterBenchmark(("Stencil/" + tag).c_str(), BM_Stencil, d, n)
+          ->Unit(benchmark::kMillisecond)->MinTime(1.0);
+      benchmark::RegisterBenchmark(("Untangle/" + tag).c_str(), BM_Untangle, d, n)
+          ->Unit(benchmark::kMillisecond)->MinTime(3.0);
     }
   for (std::size_t n : random_sizes())
     benchmark::RegisterBenchmark(("ClassifyDualRandom/" + std::to_string(n)).c_str(), BM_ClassifyDualRandom, n)

@@ -1,5 +1,8 @@
 #include "optim/boundary.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -53,13 +56,14 @@ BoundaryConstraints::BoundaryConstraints(const ClassifiedTetMesh& primal, const 
 void BoundaryConstraints::collect_primitives(const ClassifiedTetMesh& primal) {
   for (std::size_t f = 0; f < primal.num_triangles(); ++f) {
     const ModelRef r = primal.triangle_class(TriId(f));
-    if (r.dim == 2) prims_.push_back({primal.triangle(TriId(f)), 2, r.tag});
+    if (r.dim == 2) prims_.push_back({primal.triangle(TriId(f)), 2, r.tag, static_cast<std::uint32_t>(f)});
   }
+  num_tri_prims_ = static_cast<std::uint32_t>(prims_.size());
   for (std::size_t e = 0; e < primal.num_edges(); ++e) {
     const ModelRef r = primal.edge_class(EdgeId(e));
     if (r.dim == 1) {
       const auto& ev = primal.edge(EdgeId(e));
-      prims_.push_back({{ev[0], ev[1], VertexId::invalid()}, 1, r.tag});
+      prims_.push_back({{ev[0], ev[1], VertexId::invalid()}, 1, r.tag, static_cast<std::uint32_t>(e)});
     }
   }
 }
@@ -83,16 +87,24 @@ void BoundaryConstraints::build_grid() {
   Point3 hi{-kFar, -kFar, -kFar};
   lo_ = {kFar, kFar, kFar};
   double ext = 0;
-  for (const Prim& q : prims_) {
+  box_.resize(prims_.size());
+  for (std::size_t i = 0; i < prims_.size(); ++i) {
+    const Prim& q = prims_[i];
     Point3 a = verts_[q.v[0].idx], b = a;
     for (int k = 1; k < q.dim + 1; ++k)
       for (int d = 0; d < 3; ++d) {
         a[d] = std::min(a[d], verts_[q.v[k].idx][d]);
         b[d] = std::max(b[d], verts_[q.v[k].idx][d]);
       }
+    box_[i] = {a, b};
     for (int d = 0; d < 3; ++d) { lo_[d] = std::min(lo_[d], a[d]); hi[d] = std::max(hi[d], b[d]); }
     ext += std::max({b.x - a.x, b.y - a.y, b.z - a.z});
   }
+  // The computed distances carry rounding of a few ulps of the coordinates;
+  // a box is skipped only when it is farther than the best by far more.
+  double scale = 0;
+  for (int d = 0; d < 3 && !prims_.empty(); ++d) scale = std::max({scale, std::fabs(lo_[d]), std::fabs(hi[d])});
+  box_slack_ = 1e-10 * scale;
   if (!prims_.empty()) {
     h_ = std::max(kGridCellExtents * ext / static_cast<double>(prims_.size()), kMinGridCell);
     const double span = std::max({hi.x - lo_.x, hi.y - lo_.y, hi.z - lo_.z});
@@ -134,24 +146,59 @@ void BoundaryConstraints::build_grid() {
   }
 }
 
-// Initial primitive of every boundary point: the nearest of its model entity.
+// Initial primitive of every boundary point: the nearest of its model entity
+// (parallel over the points: each search reads the grid only).
 void BoundaryConstraints::assign_initial_primitives(const PolyMesh& mesh) {
   const std::size_t np = mesh.num_points();
   dof_.assign(np, 0);
   current_.assign(np, kNone);
-  for (std::size_t p = 0; p < np; ++p) {
-    const ModelRef r = cls_[p];
-    if (r.dim == 3) dof_[p] = 3;
-    if (r.dim != 1 && r.dim != 2) continue;
-    const std::uint32_t q = nearest_by_grid(mesh.points[p], r.dim, r.tag);
-    if (q == kNone) continue;  // no primitive of this entity: keep the point fixed
-    current_[p] = q;
-    dof_[p] = static_cast<std::uint8_t>(r.dim);
-  }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, np, 2048), [&](const auto& rg) {
+    for (std::size_t p = rg.begin(); p != rg.end(); ++p) {
+      const ModelRef r = cls_[p];
+      if (r.dim == 3) dof_[p] = 3;
+      if (r.dim != 1 && r.dim != 2) continue;
+      const std::uint32_t seed = mesh.point_origin.size() == np ? origin_primitive(mesh.point_origin[p], r) : kNone;
+      const std::uint32_t q = nearest_by_grid(mesh.points[p], r.dim, r.tag, seed);
+      if (q == kNone) continue;  // no primitive of this entity: keep the point fixed
+      current_[p] = q;
+      dof_[p] = static_cast<std::uint8_t>(r.dim);
+    }
+  });
 }
 
-std::uint32_t BoundaryConstraints::nearest_by_grid(const Point3& x, int dim, std::int32_t tag) const {
+std::uint32_t BoundaryConstraints::origin_primitive(const PointOrigin& o, const ModelRef& r) const {
+  auto of_entity = [&](std::uint32_t q) { return prims_[q].dim == r.dim && prims_[q].tag == r.tag; };
+  if (o.dim == 0) {
+    if (o.id >= verts_.size()) return kNone;
+    for (std::uint32_t a = vprim_off_[o.id]; a < vprim_off_[o.id + 1]; ++a)
+      if (of_entity(vprim_[a])) return vprim_[a];
+    return kNone;
+  }
+  if (o.dim != 1 && o.dim != 2) return kNone;
+  const auto first = prims_.begin() + (o.dim == 2 ? 0 : num_tri_prims_);
+  const auto last = o.dim == 2 ? prims_.begin() + num_tri_prims_ : prims_.end();
+  const auto it = std::lower_bound(first, last, o.id, [](const Prim& q, std::uint32_t id) { return q.src < id; });
+  if (it == last || it->src != o.id) return kNone;
+  const auto q = static_cast<std::uint32_t>(it - prims_.begin());
+  return of_entity(q) ? q : kNone;
+}
+
+// The nearest primitive of the entity, ties to the lowest index, among the
+// grid's rings out to where no nearer one can lie. A primitive whose box is
+// farther than the best found by more than the rounding slack cannot be
+// nearer or tie, so its closest point is not computed; the seed, tried
+// first, makes that skip the rule.
+std::uint32_t BoundaryConstraints::nearest_by_grid(const Point3& x, int dim, std::int32_t tag,
+                                                   std::uint32_t seed) const {
   if (prims_.empty()) return kNone;
+  auto box_distance = [&](std::uint32_t q) {
+    double s2 = 0;
+    for (int d = 0; d < 3; ++d) {
+      const double o = std::max({box_[q][0][d] - x[d], x[d] - box_[q][1][d], 0.0});
+      s2 += o * o;
+    }
+    return std::sqrt(s2);
+  };
   int c[3];
   double outside = 0;  // distance from x to the grid box
   for (int d = 0; d < 3; ++d) {
@@ -162,6 +209,7 @@ std::uint32_t BoundaryConstraints::nearest_by_grid(const Point3& x, int dim, std
   }
   std::uint32_t best = kNone;
   double bestd = std::numeric_limits<double>::infinity();
+  if (seed != kNone) { best = seed; bestd = norm(closest(seed, x) - x); }
   const int rmax = std::max({n_[0], n_[1], n_[2]});
   for (int r = 0; r <= rmax; ++r) {
     for (int i = c[0] - r; i <= c[0] + r; ++i)
@@ -172,7 +220,8 @@ std::uint32_t BoundaryConstraints::nearest_by_grid(const Point3& x, int dim, std
           const std::size_t g = (static_cast<std::size_t>(i) * n_[1] + j) * n_[2] + k;
           for (std::uint32_t a = grid_off_[g]; a < grid_off_[g + 1]; ++a) {
             const std::uint32_t q = grid_[a];
-            if (prims_[q].dim != dim || prims_[q].tag != tag) continue;
+            if (prims_[q].dim != dim || prims_[q].tag != tag || q == best) continue;
+            if (box_distance(q) > bestd + box_slack_) continue;
             const double d = norm(closest(q, x) - x);
             if (d < bestd || (d == bestd && q < best)) { bestd = d; best = q; }
           }

@@ -54,6 +54,7 @@ class BoundaryConstraints {
     std::array<VertexId, 3> v;  // v[2] unused for segments
     std::int8_t dim;            // 2 triangle, 1 segment
     std::int32_t tag;
+    std::uint32_t src;          // its TriId (dim 2) or EdgeId (dim 1) in the primal
   };
   // The walk of project() stops after this many moves (the nearest point is
   // then a local one; on a facetisation of a smooth entity a few suffice).
@@ -72,10 +73,19 @@ class BoundaryConstraints {
   void build_grid();
   void assign_initial_primitives(const PolyMesh& mesh);
   Point3 closest(std::uint32_t prim, const Point3& x) const;
-  std::uint32_t nearest_by_grid(const Point3& x, int dim, std::int32_t tag) const;
+  // seed (kNone: none): a primitive of the entity tried first; the result is
+  // the same with or without it (it only lets the box test skip more).
+  std::uint32_t nearest_by_grid(const Point3& x, int dim, std::int32_t tag, std::uint32_t seed = kNone) const;
+  // The primitive the dual point was made on (its PointOrigin: that triangle,
+  // that edge, or a primitive at that vertex) if it belongs to the point's
+  // entity, else kNone.
+  std::uint32_t origin_primitive(const PointOrigin& o, const ModelRef& r) const;
 
   std::vector<Point3> verts_;
-  std::vector<Prim> prims_;
+  std::vector<Prim> prims_;                       // triangles by TriId, then segments by EdgeId
+  std::uint32_t num_tri_prims_ = 0;
+  std::vector<std::array<Point3, 2>> box_;        // per primitive: bounding box (lo, hi)
+  double box_slack_ = 0;                          // the box test's margin for rounding (scale x 1e-10)
   std::vector<std::uint32_t> vprim_off_, vprim_;  // primal vertex -> primitives
   std::vector<ModelRef> cls_;                     // per dual point
   std::vector<std::uint8_t> dof_;

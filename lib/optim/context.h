@@ -21,6 +21,7 @@ struct Context {
   std::vector<std::uint8_t> dof;             // per point: 0 fixed, 1 edge, 2 face, 3 free
   std::vector<std::uint8_t> cell_valid;      // exact star test, kept current
   std::chrono::steady_clock::time_point start;
+  std::chrono::steady_clock::time_point lap_start;  // of the phase being timed
   QualityStats last_stats;                   // of the last record()
   std::vector<double> cell_quality;          // per cell, of the last record()
   // record() is incremental: per cell the energy of the last record, and the
@@ -48,11 +49,20 @@ struct Context {
   // known: the cells' exact star verdicts (empty, or not one per cell: tested here).
   Context(PolyMesh& m, const ClassifiedTetMesh* primal, const OptimParams& p, std::span<const CellVerdict> known = {});
   double seconds() const;
+  // Adds the seconds since the last lap (or the start) to phase `name` of the
+  // report (report->phases, or the setup's until the report is attached).
+  void lap(const char* name);
+  std::vector<std::pair<std::string, double>> setup_phases;
   // Total objective (parallel per cell, serial sum: deterministic).
   double objective(std::span<const Point3> pts) const;
   // Appends an IterationRecord for the mesh's current state; re-evaluates only
   // the cells with a point moved since the last record.
   void record(int iteration);
+  // Whether the records carry the objective (cells' energies): not while only
+  // untangling (Method::Untangle), whose stopping rule counts invalid cells;
+  // its records hold the qualities only, and the first comes from the pass
+  // that computes V0.
+  bool records_energy() const { return params.method != OptimParams::Method::Untangle; }
   // Whether the run uses the centre gradients (Corrected derivatives in a
   // scheme that smooths; untangling never uses the corrected model).
   bool uses_centre_gradients() const;

@@ -320,13 +320,13 @@ ColourClasses colour_points(const Context& ctx, bool surface) {
   // Blocks sharing a cell are neighbours (a block may be listed more than
   // once: the colouring below only stamps them).
   std::vector<std::vector<std::uint32_t>> nbrs(nb);
-  std::vector<std::uint32_t> in_cell;
+  std::vector<std::uint32_t> in_cell, listed(nb, kNone);  // listed[b] == c: b already in c's list
   for (std::uint32_t c = 0; c < ctx.stencil.num_cells(); ++c) {
     in_cell.clear();
-    for (PointId q : ctx.stencil.points_of(c))
-      if (block[q.idx] != kNone) in_cell.push_back(block[q.idx]);
-    std::sort(in_cell.begin(), in_cell.end());
-    in_cell.erase(std::unique(in_cell.begin(), in_cell.end()), in_cell.end());
+    for (PointId q : ctx.stencil.points_of(c)) {
+      const std::uint32_t b = block[q.idx];
+      if (b != kNone && listed[b] != c) { listed[b] = c; in_cell.push_back(b); }
+    }
     for (std::uint32_t a : in_cell)
       for (std::uint32_t b : in_cell)
         if (a != b) nbrs[a].push_back(b);
@@ -539,6 +539,7 @@ void run_local(Context& ctx) {
   tbb::enumerable_thread_specific<VertexNewton> solvers([&] { return VertexNewton(ctx); });
   // Surface pass (model edges and faces), then volume pass (paper 3.3).
   const ColourClasses passes[2] = {colour_points(ctx, true), colour_points(ctx, false)};
+  ctx.lap("colouring");
   ctx.report->colours = static_cast<std::uint32_t>(passes[0].colour_off.size() + passes[1].colour_off.size() - 2);
   // Active set. A point is visited while a cell around it is invalid, or a point
   // of one of its cells moved by more than settle_move x its local length in

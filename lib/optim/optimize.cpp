@@ -5,6 +5,7 @@
 
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <string>
 
 #include "core/error.h"
@@ -19,8 +20,11 @@ namespace optim_detail {
 
 Context::Context(PolyMesh& m, const ClassifiedTetMesh* primal, const OptimParams& p,
                  std::span<const CellVerdict> known)
-    : mesh(m), params(p), stencil(build_stencil(m)), start(std::chrono::steady_clock::now()) {
+    : mesh(m), params(p), start(std::chrono::steady_clock::now()), lap_start(start) {
+  stencil = build_stencil(m);
+  lap("stencil");
   if (primal) bc = std::make_unique<BoundaryConstraints>(*primal, m);
+  lap("constraints");
   dof.assign(m.num_points(), 0);
   for (std::size_t i = 0; i < m.num_points(); ++i) {
     const int d = m.point_class[i].dim;
@@ -30,10 +34,17 @@ Context::Context(PolyMesh& m, const ClassifiedTetMesh* primal, const OptimParams
   // Points that lie in no cell do not enter the objective: keep them fixed.
   for (std::size_t i = 0; i < m.num_points(); ++i)
     if (stencil.cells_of(PointId(i)).empty()) dof[i] = 0;
-  V0 = cell_reference_volumes(stencil, p.metric, m.points);
+  if (records_energy()) {
+    V0 = cell_reference_volumes(stencil, p.metric, m.points);
+  } else {
+    V0 = cell_reference_volumes(stencil, p.metric, m.points, &cell_quality);
+    recorded_points.assign(m.points.begin(), m.points.end());  // the qualities' positions
+  }
+  lap("reference_volumes");
   cell_valid.assign(m.num_cells(), 0);
   if (known.size() == m.num_cells()) {
     for (std::size_t c = 0; c < known.size(); ++c) cell_valid[c] = known[c].valid;
+    lap("verdicts");
     return;
   }
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m.num_cells(), 256), [&](const auto& r) {
@@ -41,6 +52,17 @@ Context::Context(PolyMesh& m, const ClassifiedTetMesh* primal, const OptimParams
     for (std::size_t c = r.begin(); c != r.end(); ++c)
       cell_valid[c] = star_shaped_verdict(stencil, static_cast<std::uint32_t>(c), m.points, true, scratch).valid;
   });
+  lap("verdicts");
+}
+
+void Context::lap(const char* name) {
+  const auto now = std::chrono::steady_clock::now();
+  const double dt = std::chrono::duration<double>(now - lap_start).count();
+  lap_start = now;
+  auto& phases = report ? report->phases : setup_phases;
+  for (auto& [n, t] : phases)
+    if (n == name) { t += dt; return; }
+  phases.emplace_back(name, dt);
 }
 
 double Context::seconds() const {
@@ -90,7 +112,9 @@ void Context::refresh_cells(std::span<const std::uint32_t> cells) {
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells.size(), 64), [&](const auto& rg) {
     for (std::size_t i = rg.begin(); i != rg.end(); ++i) {
       const std::uint32_t c = cells[i];
-      if (grads) {
+      if (!records_energy()) {
+        cell_quality[c] = polydual::cell_quality(stencil, c, params.metric, mesh.points);
+      } else if (grads) {
         recorded_energy[c] = cell_energy_gradient(stencil, c, params.metric, mesh.points, V0[c], params.c, nullptr,
                                                   &grad_R[c], grad_F.data() + stencil.cell_loop_off[c]);
         cell_quality[c] = polydual::cell_quality(stencil, c, params.metric, mesh.points);
@@ -104,6 +128,7 @@ void Context::refresh_cells(std::span<const std::uint32_t> cells) {
 
 void Context::record(int iteration) {
   throw_if_interrupted();  // between iterations: Ctrl-C stops a long run promptly
+  if (iteration > 0) lap("iterations");
   IterationRecord r;
   r.iteration = iteration;
   // The cells whose points moved since the last record get their energy and
@@ -112,7 +137,7 @@ void Context::record(int iteration) {
   // corners; the others keep theirs. The sums are serial in cell order, so
   // the objective is the same as a full pass's, bit for bit.
   const std::size_t nc = stencil.num_cells();
-  recorded_energy.resize(nc);
+  if (records_energy()) recorded_energy.resize(nc);
   cell_quality.resize(nc);
   if (uses_centre_gradients()) {
     grad_R.resize(nc);
@@ -120,7 +145,7 @@ void Context::record(int iteration) {
   }
   refresh_cells(changed_cells(*this));
   recorded_points.assign(mesh.points.begin(), mesh.points.end());
-  r.objective = 0;
+  r.objective = records_energy() ? 0.0 : std::numeric_limits<double>::quiet_NaN();
   for (double e : recorded_energy) r.objective += e;
   // cell_valid holds the exact star verdict of every cell at all times (both
   // schemes re-test every cell whose points they move), so counting it is the
@@ -133,6 +158,7 @@ void Context::record(int iteration) {
   r.max_quality = last_stats.max;
   r.seconds = seconds();
   report->iterations.push_back(r);
+  lap("record");
   if (progress && *progress) {
     char detail[128];
     std::snprintf(detail, sizeof detail, "invalid cells %zu, mean quality %.4f, min %.4f", r.invalid,
@@ -160,6 +186,7 @@ OptimReport optimize(PolyMesh& mesh, const ClassifiedTetMesh* primal, const Opti
   OptimReport rep;
   optim_detail::Context ctx(mesh, primal, params, known);
   ctx.report = &rep;
+  rep.phases = std::move(ctx.setup_phases);
   ctx.progress = &progress;
   ctx.seed_cells = seed_cells;
   // Every run ends with a record() of the final state, so its statistics are
@@ -204,6 +231,9 @@ Json OptimReport::to_json() const {
   j.set("vertex_updates", static_cast<unsigned long long>(vertex_updates));
   j.set("colours", static_cast<unsigned long long>(colours));
   j.set("vertex_updates_per_second", seconds > 0 ? static_cast<double>(vertex_updates) / seconds : 0.0);
+  Json ph = Json::object();
+  for (const auto& [name, t] : phases) ph.set(name, t);
+  j.set("phases", std::move(ph));
   return j;
 }
 

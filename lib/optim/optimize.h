@@ -4,7 +4,9 @@
 // points on the original facetisation and never turning a valid cell invalid.
 #pragma once
 #include <cstdint>
+#include <string>
 #include <string_view>
+#include <utility>
 #include <span>
 #include <vector>
 
@@ -116,7 +118,7 @@ struct OptimParams {
 
 struct IterationRecord {
   int iteration = 0;           // 0 = initial state
-  double objective = 0;        // sum of kappa_mod over all corners
+  double objective = 0;        // sum of kappa_mod over all corners (NaN while only untangling: not evaluated)
   std::size_t invalid = 0;     // invalid cells, exact star test
   double min_quality = 0;      // over untangled cells, kappa/3
   double mean_quality = 0;
@@ -135,6 +137,11 @@ struct OptimReport {
   double seconds = 0;
   std::uint64_t vertex_updates = 0;  // accepted point moves (Local) / moved points x rounds (Global)
   std::uint32_t colours = 0;         // Local: independent sets of the surface + volume passes
+  // Wall seconds of the run's parts, in the order they first ran: the setup
+  // (stencil, constraints, reference_volumes, verdicts), record (the
+  // iterations' energies and qualities), colouring (local), iterations (the
+  // sweeps' point visits, the global solver's rounds).
+  std::vector<std::pair<std::string, double>> phases;
   Json to_json() const;
 };
 

@@ -94,6 +94,17 @@ inline T corner_kappa_mod(const T e1[3], const T e2[3], const T e3[3], double V0
   return 2.0 * sqrt(A * L) / regularised_volume(V, adaptive_delta(V, V0, c));
 }
 
+// kappa and kappa_mod of one corner from one evaluation of its invariants
+// (the same bits as corner_kappa and corner_kappa_mod: the same expressions).
+inline double corner_kappa_and_mod(const double e1[3], const double e2[3], const double e3[3], double V0, double c,
+                                   double* kappa) {
+  double A, L, V;
+  corner_invariants(e1, e2, e3, A, L, V);
+  const double S = std::sqrt(A * L);
+  *kappa = S / V;
+  return 2.0 * S / regularised_volume(V, adaptive_delta(V, V0, c));
+}
+
 // kappa_mod and its gradient with respect to e1, e2, e3 (hand-derived adjoint,
 // used by the global gradient; checked against Jets in tests/optim_test.cpp):
 //   d kappa_mod = (L dA + A dL) / (D S) - (kappa_mod / D) D'(V) dV,

@@ -72,8 +72,8 @@ double cell_energy_and_quality(const MeshStencil& s, std::uint32_t c, Metric m, 
   bool tangled = false;
   for_each_corner<double>(s, c, m, PointsPos{points.data()},
                           [&](const double* e1, const double* e2, const double* e3) {
-                            e += corner_kappa_mod(e1, e2, e3, V0, c_delta);
-                            const double k = corner_kappa(e1, e2, e3);
+                            double k;
+                            e += corner_kappa_and_mod(e1, e2, e3, V0, c_delta, &k);
                             if (!(k > 0) || !std::isfinite(k)) tangled = true;
                             sum += k;
                             ++n;
@@ -140,19 +140,31 @@ Json QualityStats::to_json() const {
 
 std::vector<double> cell_reference_volumes(const MeshStencil& s, Metric m,
                                            std::span<const Point3> points) {
+  return cell_reference_volumes(s, m, points, nullptr);
+}
+
+std::vector<double> cell_reference_volumes(const MeshStencil& s, Metric m, std::span<const Point3> points,
+                                           std::vector<double>* quality) {
   std::vector<double> v0(s.num_cells(), 0.0);
+  if (quality) quality->assign(s.num_cells(), 0.0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, v0.size(), 512), [&](const auto& r) {
     for (std::size_t c = r.begin(); c != r.end(); ++c) {
-      double sum = 0;
+      double sum = 0, ksum = 0;
       std::size_t n = 0;
+      bool tangled = false;
       for_each_corner<double>(s, static_cast<std::uint32_t>(c), m, PointsPos{points.data()},
                               [&](const double* e1, const double* e2, const double* e3) {
                                 double A, L, V;
                                 corner_invariants(e1, e2, e3, A, L, V);
                                 sum += std::fabs(V);
                                 ++n;
+                                if (!quality) return;
+                                const double k = std::sqrt(A * L) / V;  // corner_kappa's expression
+                                if (!(k > 0) || !std::isfinite(k)) tangled = true;
+                                ksum += k;
                               });
       v0[c] = n ? sum / static_cast<double>(n) : 0.0;
+      if (quality) (*quality)[c] = quality_of(ksum, n, tangled);
     }
   });
   double mean = 0;

@@ -46,6 +46,10 @@ QualityStats quality_stats(const PolyMesh& mesh, Metric m);
 // objective is one fixed function during a run.
 std::vector<double> cell_reference_volumes(const MeshStencil& s, Metric m,
                                            std::span<const Point3> points);
+// The same reference volumes and, from the same pass over the corners, each
+// cell's cell_quality (bit for bit) into *quality.
+std::vector<double> cell_reference_volumes(const MeshStencil& s, Metric m, std::span<const Point3> points,
+                                           std::vector<double>* quality);
 
 // Sum of kappa_mod over the corners of cell c (the objective's cell term, design §7).
 double cell_energy(const MeshStencil& s, std::uint32_t c, Metric m, std::span<const Point3> points,
