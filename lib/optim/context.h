@@ -24,12 +24,14 @@ struct Context {
   std::chrono::steady_clock::time_point lap_start;  // of the phase being timed
   QualityStats last_stats;                   // of the last record()
   std::vector<double> cell_quality;          // per cell, of the last record()
-  // record() is incremental: per cell the energy of the last record, and the
-  // points' positions then; a cell whose points are all bitwise unchanged
-  // since has the same energy, quality and centre gradients (they are
+  // record() is incremental: per cell the energy of the last record; a cell
+  // none of whose points was touched since (every point a scheme may have
+  // written: the local scheme's visited points, every point after a global
+  // round) has the same energy, quality and centre gradients (they are
   // functions of its own points, V0[c] and the run's fixed parameters).
   std::vector<double> recorded_energy;
-  std::vector<Point3> recorded_points;
+  std::vector<char> touched;  // per point, since the last record
+  bool all_touched = true;    // every point (the first record, a global round)
   OptimReport* report = nullptr;
   const ProgressFn* progress = nullptr;      // called after each record(); may be null
   std::span<const char> seed_cells;          // optimize()'s; empty: every point starts active

@@ -245,6 +245,7 @@ void run_global(Context& ctx) {
       if (!(ctx.mesh.points[p.idx] == before[p.idx])) ++ctx.report->vertex_updates;
     }
     ctx.cell_valid = valid_now;
+    ctx.all_touched = true;  // a round moves every free point
     ctx.record(round);
     const double f = ctx.report->iterations.back().objective;
     if (std::fabs(f_prev - f) < prm.effective_tol() * std::fabs(f_prev)) break;

@@ -1,10 +1,14 @@
 #include "optim/objective.h"
 
+#include <stdexcept>
+
 namespace polydual {
 
 double cell_energy_gradient(const MeshStencil& s, std::uint32_t c, Metric m,
                             std::span<const Point3> pts, double V0, double c_delta, Vec3* grad,
                             Vec3* grad_R, Vec3* grad_F) {
+  if (grad && s.loop_local.size() != s.loop_pts.size())
+    throw std::logic_error("cell_energy_gradient: per-point gradients need build_stencil(mesh, true)");
   const auto cp = s.points_of(c);
   const std::size_t np = cp.size();
   Vec3 R{};

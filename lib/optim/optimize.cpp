@@ -21,7 +21,7 @@ namespace optim_detail {
 Context::Context(PolyMesh& m, const ClassifiedTetMesh* primal, const OptimParams& p,
                  std::span<const CellVerdict> known)
     : mesh(m), params(p), start(std::chrono::steady_clock::now()), lap_start(start) {
-  stencil = build_stencil(m);
+  stencil = build_stencil(m, p.method == OptimParams::Method::Global);  // its gradients need loop_local
   lap("stencil");
   if (primal) bc = std::make_unique<BoundaryConstraints>(*primal, m);
   lap("constraints");
@@ -38,8 +38,9 @@ Context::Context(PolyMesh& m, const ClassifiedTetMesh* primal, const OptimParams
     V0 = cell_reference_volumes(stencil, p.metric, m.points);
   } else {
     V0 = cell_reference_volumes(stencil, p.metric, m.points, &cell_quality);
-    recorded_points.assign(m.points.begin(), m.points.end());  // the qualities' positions
+    all_touched = false;  // the qualities are those of the points as they are
   }
+  touched.assign(m.num_points(), 0);
   lap("reference_volumes");
   cell_valid.assign(m.num_cells(), 0);
   if (known.size() == m.num_cells()) {
@@ -85,24 +86,24 @@ bool Context::uses_centre_gradients() const {
 }
 
 namespace {
-bool same_bits(const Point3& a, const Point3& b) { return std::memcmp(&a, &b, sizeof(Point3)) == 0; }
-
-// The cells to re-evaluate at a record: every cell at the first, then the
-// cells of the points whose coordinates changed (bitwise) since the last.
-std::vector<std::uint32_t> changed_cells(const Context& ctx) {
+// The cells to re-evaluate at a record (every cell when all points count as
+// touched, else the cells of the touched points, increasing); clears the marks.
+std::vector<std::uint32_t> changed_cells(Context& ctx) {
   const std::size_t nc = ctx.stencil.num_cells();
   std::vector<std::uint32_t> cells;
-  if (ctx.recorded_points.size() != ctx.mesh.points.size()) {
+  if (ctx.all_touched) {
     cells.resize(nc);
     for (std::size_t c = 0; c < nc; ++c) cells[c] = static_cast<std::uint32_t>(c);
-    return cells;
+  } else {
+    std::vector<char> dirty(nc, 0);
+    for (std::size_t p = 0; p < ctx.touched.size(); ++p)
+      if (ctx.touched[p])
+        for (std::uint32_t c : ctx.stencil.cells_of(PointId(p))) dirty[c] = 1;
+    for (std::size_t c = 0; c < nc; ++c)
+      if (dirty[c]) cells.push_back(static_cast<std::uint32_t>(c));
   }
-  std::vector<char> dirty(nc, 0);
-  for (std::size_t p = 0; p < ctx.mesh.points.size(); ++p)
-    if (!same_bits(ctx.mesh.points[p], ctx.recorded_points[p]))
-      for (std::uint32_t c : ctx.stencil.cells_of(PointId(p))) dirty[c] = 1;
-  for (std::size_t c = 0; c < nc; ++c)
-    if (dirty[c]) cells.push_back(static_cast<std::uint32_t>(c));
+  ctx.all_touched = false;
+  std::fill(ctx.touched.begin(), ctx.touched.end(), 0);
   return cells;
 }
 }  // namespace
@@ -144,7 +145,6 @@ void Context::record(int iteration) {
     grad_F.resize(stencil.cell_loop_off.back());
   }
   refresh_cells(changed_cells(*this));
-  recorded_points.assign(mesh.points.begin(), mesh.points.end());
   r.objective = records_energy() ? 0.0 : std::numeric_limits<double>::quiet_NaN();
   for (double e : recorded_energy) r.objective += e;
   // cell_valid holds the exact star verdict of every cell at all times (both

@@ -40,11 +40,11 @@ Sign undecided_tet_sign(const MeshStencil& s, std::uint32_t c, std::span<const P
   return decomposition_tet_sign(face[i], face[(i + 1) % loop.size()], face, cell);
 }
 
-}  // namespace
-
-CellVerdict star_shaped_verdict(const MeshStencil& s, std::uint32_t c,
-                                std::span<const Point3> points, bool stop_at_first_bad,
-                                std::vector<Point3>& scratch) {
+// The verdict of cell c; on_bad(j, i) for each non-positive tet (loop j,
+// edge i); it returns whether to stop there.
+template <class OnBad>
+CellVerdict stencil_verdict(const MeshStencil& s, std::uint32_t c, std::span<const Point3> points,
+                            std::vector<Point3>& scratch, OnBad&& on_bad) {
   // The summed filter decides almost every tet from the cell's and the face's
   // sums, read straight from the points; the rest go exact.
   const auto cp = s.points_of(c);
@@ -64,11 +64,29 @@ CellVerdict star_shaped_verdict(const MeshStencil& s, std::uint32_t c,
       if (sg != Sign::Positive) {
         v.valid = false;
         ++v.bad_tets;
-        if (stop_at_first_bad) return v;
+        if (on_bad(j, i)) return v;
       }
     }
   }
   return v;
+}
+
+}  // namespace
+
+CellVerdict star_shaped_verdict(const MeshStencil& s, std::uint32_t c,
+                                std::span<const Point3> points, bool stop_at_first_bad,
+                                std::vector<Point3>& scratch) {
+  return stencil_verdict(s, c, points, scratch, [&](std::uint32_t, std::size_t) { return stop_at_first_bad; });
+}
+
+CellVerdict star_shaped_bad_tets(const MeshStencil& s, std::uint32_t c, std::span<const Point3> points,
+                                 std::vector<Point3>& scratch,
+                                 std::vector<std::pair<std::uint32_t, std::uint32_t>>& bad) {
+  bad.clear();
+  return stencil_verdict(s, c, points, scratch, [&](std::uint32_t j, std::size_t i) {
+    bad.emplace_back(j, static_cast<std::uint32_t>(i));
+    return false;
+  });
 }
 
 CellVerdict star_shaped_verdict(const PolyMesh& mesh, CellId c) {

@@ -4,6 +4,7 @@
 // c's distinct points must be strictly positive (decomposition_tet_sign, exact).
 #pragma once
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "mesh/poly_mesh.h"
@@ -34,6 +35,11 @@ void star_shaped_verdicts_of(const PolyMesh& mesh, std::span<const std::uint32_t
 CellVerdict star_shaped_verdict(const MeshStencil& s, std::uint32_t c,
                                 std::span<const Point3> points, bool stop_at_first_bad,
                                 std::vector<Point3>& scratch);
+// The same test, listing every non-positive tet as (loop j of the stencil,
+// edge i of the loop: the tet (loop[i], loop[i+1], F, R)) into `bad`.
+CellVerdict star_shaped_bad_tets(const MeshStencil& s, std::uint32_t c, std::span<const Point3> points,
+                                 std::vector<Point3>& scratch,
+                                 std::vector<std::pair<std::uint32_t, std::uint32_t>>& bad);
 // Number of invalid cells (exact), parallel.
 std::size_t count_invalid_cells(const MeshStencil& s, std::span<const Point3> points);
 

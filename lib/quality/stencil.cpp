@@ -52,7 +52,7 @@ void fill_cell(const PolyMesh& mesh, std::uint32_t c, CellLister& ls, MeshStenci
         pts[n++] = p;
       }
       s.loop_pts[i_out] = p;
-      s.loop_local[i_out] = ls.local[p.idx];
+      if (!s.loop_local.empty()) s.loop_local[i_out] = ls.local[p.idx];
     }
   }
 }
@@ -90,7 +90,7 @@ void build_point_cells(MeshStencil& s, std::size_t np) {
 // distinct points by a per-thread stamp), then, at the prefix-summed offsets,
 // the lists themselves. Every array is sized once, so nothing is copied as it
 // grows; the result is the same for any number of threads.
-MeshStencil build_stencil(const PolyMesh& mesh) {
+MeshStencil build_stencil(const PolyMesh& mesh, bool local_indices) {
   MeshStencil s;
   const std::size_t nc = mesh.num_cells(), np = mesh.num_points(), nh = mesh.cell_faces.size();
   s.cell_loop_off.assign(mesh.cell_offsets.begin(), mesh.cell_offsets.end());  // a loop per half-face
@@ -115,7 +115,7 @@ MeshStencil build_stencil(const PolyMesh& mesh) {
   prefix_sum(s.cell_pt_off);
   s.cell_pts.resize(s.cell_pt_off.back());
   s.loop_pts.resize(s.loop_off.back());
-  s.loop_local.resize(s.loop_off.back());
+  if (local_indices) s.loop_local.resize(s.loop_off.back());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nc, kCellGrain), [&](const auto& r) {
     CellLister& ls = listers.local();
     for (std::size_t c = r.begin(); c != r.end(); ++c) fill_cell(mesh, static_cast<std::uint32_t>(c), ls, s);

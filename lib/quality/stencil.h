@@ -23,7 +23,8 @@ struct MeshStencil {
   std::vector<std::uint32_t> cell_loop_off{0};
   std::vector<std::uint32_t> loop_off{0};
   std::vector<PointId> loop_pts;
-  // loop_local[i]: index of loop_pts[i] within its cell's points_of() list.
+  // loop_local[i]: index of loop_pts[i] within its cell's points_of() list
+  // (built on request only: the per-point gradients of the global scheme).
   std::vector<std::uint32_t> loop_local;
   // Point p's cells: point_cells[point_cell_off[p] .. point_cell_off[p+1]), increasing.
   std::vector<std::uint32_t> point_cell_off;
@@ -47,7 +48,8 @@ struct MeshStencil {
   }
 };
 
-MeshStencil build_stencil(const PolyMesh& mesh);
+// local_indices: also fill loop_local (else it stays empty).
+MeshStencil build_stencil(const PolyMesh& mesh, bool local_indices = false);
 
 // Calls fn(e1, e2, e3) (arrays of 3 T, right-handed for a valid corner) for every
 // corner of cell c under metric m. pos(PointId, T out[3]) supplies coordinates, so
