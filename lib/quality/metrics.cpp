@@ -143,8 +143,94 @@ std::vector<double> cell_reference_volumes(const MeshStencil& s, Metric m,
   return cell_reference_volumes(s, m, points, nullptr);
 }
 
+namespace {
+// V0 floored at 1e-3 x the mesh-wide mean (cell_reference_volumes).
+std::vector<double> floored_reference_volumes(std::vector<double> v0) {
+  double mean = 0;
+  for (double x : v0) mean += x;
+  mean = v0.empty() ? 1.0 : mean / static_cast<double>(v0.size());
+  if (!(mean > 0)) mean = 1.0;
+  for (double& x : v0) x = std::max(x, 1e-3 * mean);
+  return v0;
+}
+
+// Two lanes of doubles (SSE2, part of x86-64): IEEE operations lane by lane,
+// so each lane's bits are those of the scalar code with the same expression.
+using V2 = double __attribute__((vector_size(16)));
+
+// Sums over a Q1 cell's corners of |V| and of kappa (corner_kappa's
+// expression), the corner count, and whether a corner is tangled: the two
+// corners of each loop edge (at a, then at b; for_each_corner's order) in
+// the two lanes, summed in that order, so the sums are for_each_corner's bit
+// for bit.
+struct CornerSums {
+  double abs_v = 0, kappa = 0;
+  std::size_t n = 0;
+  bool tangled = false;
+};
+CornerSums q1_corner_sums(const MeshStencil& s, std::uint32_t c, std::span<const Point3> points) {
+  CornerSums r;
+  const auto pts = s.points_of(c);
+  double R[3] = {0, 0, 0};
+  for (PointId q : pts) {
+    const Point3& x = points[q.idx];
+    R[0] += x.x; R[1] += x.y; R[2] += x.z;
+  }
+  const double inv_m = 1.0 / static_cast<double>(pts.size());
+  R[0] *= inv_m; R[1] *= inv_m; R[2] *= inv_m;
+  for (std::uint32_t j = s.cell_loop_off[c]; j < s.cell_loop_off[c + 1]; ++j) {
+    const auto loop = s.loop(j);
+    const std::size_t k = loop.size();
+    double F[3] = {0, 0, 0};
+    for (PointId q : loop) {
+      const Point3& x = points[q.idx];
+      F[0] += x.x; F[1] += x.y; F[2] += x.z;
+    }
+    const double inv_k = 1.0 / static_cast<double>(k);
+    F[0] *= inv_k; F[1] *= inv_k; F[2] *= inv_k;
+    const Point3* a = &points[loop[k - 1].idx];
+    for (std::size_t i = 0; i < k; ++i) {
+      const Point3* b = &points[loop[i].idx];
+      // Lane 0: the corner at a (F-a, b-a, R-a); lane 1: at b (a-b, F-b, R-b).
+      V2 e1[3], e2[3], e3[3];
+      for (int d = 0; d < 3; ++d) {
+        const double ad = (*a)[d], bd = (*b)[d];
+        e1[d] = V2{F[d] - ad, ad - bd};
+        e2[d] = V2{bd - ad, F[d] - bd};
+        e3[d] = V2{R[d] - ad, R[d] - bd};
+      }
+      V2 A, L, V;
+      corner_invariants(e1, e2, e3, A, L, V);
+      const V2 AL = A * L;
+      const V2 S = {std::sqrt(AL[0]), std::sqrt(AL[1])};
+      const V2 kap = S / V;
+      for (int lane = 0; lane < 2; ++lane) {
+        r.abs_v += std::fabs(V[lane]);
+        if (!(kap[lane] > 0) || !std::isfinite(kap[lane])) r.tangled = true;
+        r.kappa += kap[lane];
+      }
+      r.n += 2;
+      a = b;
+    }
+  }
+  return r;
+}
+}  // namespace
+
 std::vector<double> cell_reference_volumes(const MeshStencil& s, Metric m, std::span<const Point3> points,
                                            std::vector<double>* quality) {
+  if (quality && m == Metric::Q1) {
+    std::vector<double> v0(s.num_cells(), 0.0);
+    quality->assign(s.num_cells(), 0.0);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, v0.size(), 512), [&](const auto& r) {
+      for (std::size_t c = r.begin(); c != r.end(); ++c) {
+        const CornerSums cs = q1_corner_sums(s, static_cast<std::uint32_t>(c), points);
+        v0[c] = cs.n ? cs.abs_v / static_cast<double>(cs.n) : 0.0;
+        (*quality)[c] = quality_of(cs.kappa, cs.n, cs.tangled);
+      }
+    });
+    return floored_reference_volumes(std::move(v0));
+  }
   std::vector<double> v0(s.num_cells(), 0.0);
   if (quality) quality->assign(s.num_cells(), 0.0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, v0.size(), 512), [&](const auto& r) {
@@ -167,13 +253,9 @@ std::vector<double> cell_reference_volumes(const MeshStencil& s, Metric m, std::
       if (quality) (*quality)[c] = quality_of(ksum, n, tangled);
     }
   });
-  double mean = 0;
-  for (double x : v0) mean += x;
-  mean = v0.empty() ? 1.0 : mean / static_cast<double>(v0.size());
-  if (!(mean > 0)) mean = 1.0;
-  for (double& x : v0) x = std::max(x, 1e-3 * mean);
-  return v0;
+  return floored_reference_volumes(std::move(v0));
 }
+
 
 double cell_energy(const MeshStencil& s, std::uint32_t c, Metric m, std::span<const Point3> points,
                    double V0, double c_delta) {
