@@ -312,12 +312,16 @@ struct ColourClasses {
 // around them (an untangling sweep's candidates; smaller blocks keep the few
 // candidates spread over both threads).
 constexpr std::uint32_t kSubsetBlockPoints = 32;
-ColourClasses colour_points(const Context& ctx, bool surface, const std::vector<char>* only = nullptr) {
+// block: one entry per point, kNone on entry and on return (kept by the
+// caller: an untangling sweep colours a few points of a large mesh).
+constexpr std::uint32_t kNoBlock = UINT32_MAX;
+ColourClasses colour_points(const Context& ctx, bool surface, const std::vector<char>* only,
+                            std::vector<std::uint32_t>& block) {
   const std::size_t np = ctx.mesh.num_points();
-  constexpr std::uint32_t kNone = UINT32_MAX;
+  constexpr std::uint32_t kNone = kNoBlock;
   const std::uint32_t block_points = only ? kSubsetBlockPoints : kBlockPoints;
   // Blocks of consecutive eligible points.
-  std::vector<std::uint32_t> block(np, kNone), members;
+  std::vector<std::uint32_t> members;
   std::uint32_t nb = 0, in_block = 0;
   for (std::size_t i = 0; i < np; ++i) {
     const int k = ctx.dof[i];
@@ -375,6 +379,7 @@ ColourClasses colour_points(const Context& ctx, bool surface, const std::vector<
   std::vector<std::uint32_t> by_block(first.back());
   std::vector<std::uint32_t> fill(first.begin(), first.end() - 1);
   for (std::uint32_t i : members) by_block[fill[block[i]]++] = i;
+  for (std::uint32_t i : members) block[i] = kNone;
   cc.colour_off.assign(ncolours + 1, 0);
   for (std::uint32_t b = 0; b < nb; ++b) ++cc.colour_off[colour[b] + 1];
   for (std::uint32_t c = 0; c < ncolours; ++c) cc.colour_off[c + 1] += cc.colour_off[c];
@@ -387,8 +392,8 @@ ColourClasses colour_points(const Context& ctx, bool surface, const std::vector<
 
 // Surface pass (model edges and faces), then volume pass (paper 3.3).
 using Passes = std::array<ColourClasses, 2>;
-Passes colour_passes(Context& ctx, const std::vector<char>* only = nullptr) {
-  Passes p{colour_points(ctx, true, only), colour_points(ctx, false, only)};
+Passes colour_passes(Context& ctx, std::vector<std::uint32_t>& block, const std::vector<char>* only = nullptr) {
+  Passes p{colour_points(ctx, true, only, block), colour_points(ctx, false, only, block)};
   const auto n = static_cast<std::uint32_t>(p[0].colour_off.size() + p[1].colour_off.size() - 2);
   ctx.report->colours = std::max(ctx.report->colours, n);
   return p;
@@ -563,17 +568,23 @@ void mark_near_invalid(const Context& ctx, std::vector<char>& near) {
 // sweeps, over the cells it left, visit every point of an invalid cell.
 void mark_bad_tet_points(const Context& ctx, std::vector<char>& focus) {
   focus.assign(ctx.mesh.num_points(), 0);
-  std::vector<Point3> scratch;
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> bad;
-  for (std::uint32_t c = 0; c < ctx.stencil.num_cells(); ++c) {
-    if (ctx.cell_valid[c]) continue;
-    star_shaped_bad_tets(ctx.stencil, c, ctx.mesh.points, scratch, bad);  // exact, as cell_valid
-    for (const auto& [j, i] : bad) {
+  std::vector<std::uint32_t> invalid;
+  for (std::uint32_t c = 0; c < ctx.stencil.num_cells(); ++c)
+    if (!ctx.cell_valid[c]) invalid.push_back(c);
+  // Each invalid cell's bad tets in parallel (exact, as cell_valid), marked
+  // serially (the marks are the same in any order).
+  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> bad(invalid.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, invalid.size(), 16), [&](const auto& r) {
+    std::vector<Point3> scratch;
+    for (std::size_t i = r.begin(); i != r.end(); ++i)
+      star_shaped_bad_tets(ctx.stencil, invalid[i], ctx.mesh.points, scratch, bad[i]);
+  });
+  for (const auto& tets : bad)
+    for (const auto& [j, i] : tets) {
       const auto loop = ctx.stencil.loop(j);
       focus[loop[i].idx] = 1;
       focus[loop[i + 1 == loop.size() ? 0 : i + 1].idx] = 1;
     }
-  }
 }
 
 // The points an untangling sweep may visit: a superset of those its active
@@ -612,9 +623,10 @@ void run_local(Context& ctx) {
   // any point needs it (never while only untangling); an untangling sweep
   // colours its candidates only (untangling_candidates).
   std::optional<Passes> whole;
+  std::vector<std::uint32_t> block(ctx.mesh.num_points(), kNoBlock);  // colour_points' scratch
   auto whole_passes = [&]() -> const Passes& {
     if (!whole) {
-      whole = colour_passes(ctx);
+      whole = colour_passes(ctx, block);
       ctx.lap("colouring");
     }
     return *whole;
@@ -694,7 +706,7 @@ void run_local(Context& ctx) {
     IterationRecord counts;
     if (untangling) {
       const std::vector<char> cand = untangling_candidates(ctx, first_untangling, focus, last_change, sweep, near_invalid);
-      const Passes sub = colour_passes(ctx, &cand);
+      const Passes sub = colour_passes(ctx, block, &cand);
       ctx.lap("colouring");
       sweep_points(ctx, sub, solvers, sweep, last_change, active, counts);
     } else {
