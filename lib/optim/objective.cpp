@@ -21,7 +21,7 @@ double cell_energy_gradient(const MeshStencil& s, std::uint32_t c, Metric m,
   for (std::uint32_t j = s.cell_loop_off[c]; j < s.cell_loop_off[c + 1]; ++j) {
     const std::uint32_t b0 = s.loop_off[j], k = s.loop_off[j + 1] - b0;
     const PointId* lp = s.loop_pts.data() + b0;
-    const std::uint32_t* ll = s.loop_local.data() + b0;
+    const std::uint32_t* ll = grad ? s.loop_local.data() + b0 : nullptr;  // empty unless built for grad
     Vec3 F{}, gF{}, g1, g2, g3;
     for (std::uint32_t i = 0; i < k; ++i) F += pts[lp[i].idx];
     F = F / static_cast<double>(k);
