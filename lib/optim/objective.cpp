@@ -76,15 +76,8 @@ double local_objective_derivatives(const MeshStencil& s, const Point3* pts, cons
   // LocalObjective bit for bit; the weights are d e / d x_p (scalars).
   for (std::uint32_t cell : s.cells_of(p)) {
     const double v0 = V0[cell];
-    const auto cp = s.points_of(cell);
-    double R[3] = {0.0, 0.0, 0.0};
-    for (PointId q : cp) {
-      const Point3& y = pts[q.idx];
-      R[0] += y.x; R[1] += y.y; R[2] += y.z;
-    }
-    const double inv_m = 1.0 / static_cast<double>(cp.size());
-    R[0] *= inv_m; R[1] *= inv_m; R[2] *= inv_m;
-    const double wR = inv_m;
+    double R[3];
+    const double wR = mean_of(s.points_of(cell), pts, R);
     // Corners that see p only through R: derivatives in e3 summed per cell, then
     // scaled once by wR (gradient) and wR^2 (Hessian).
     double gR[3] = {0.0, 0.0, 0.0}, HR[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};

@@ -170,24 +170,12 @@ struct CornerSums {
 };
 CornerSums q1_corner_sums(const MeshStencil& s, std::uint32_t c, std::span<const Point3> points) {
   CornerSums r;
-  const auto pts = s.points_of(c);
-  double R[3] = {0, 0, 0};
-  for (PointId q : pts) {
-    const Point3& x = points[q.idx];
-    R[0] += x.x; R[1] += x.y; R[2] += x.z;
-  }
-  const double inv_m = 1.0 / static_cast<double>(pts.size());
-  R[0] *= inv_m; R[1] *= inv_m; R[2] *= inv_m;
+  double R[3], F[3];
+  mean_of(s.points_of(c), points.data(), R);
   for (std::uint32_t j = s.cell_loop_off[c]; j < s.cell_loop_off[c + 1]; ++j) {
     const auto loop = s.loop(j);
     const std::size_t k = loop.size();
-    double F[3] = {0, 0, 0};
-    for (PointId q : loop) {
-      const Point3& x = points[q.idx];
-      F[0] += x.x; F[1] += x.y; F[2] += x.z;
-    }
-    const double inv_k = 1.0 / static_cast<double>(k);
-    F[0] *= inv_k; F[1] *= inv_k; F[2] *= inv_k;
+    mean_of(loop, points.data(), F);
     const Point3* a = &points[loop[k - 1].idx];
     for (std::size_t i = 0; i < k; ++i) {
       const Point3* b = &points[loop[i].idx];

@@ -51,6 +51,19 @@ struct MeshStencil {
 // local_indices: also fill loop_local (else it stays empty).
 MeshStencil build_stencil(const PolyMesh& mesh, bool local_indices = false);
 
+// The mean of the listed points into out (summed in list order, then scaled
+// by 1/n: for_each_corner's R and F, bit for bit); returns 1/n.
+inline double mean_of(std::span<const PointId> ids, const Point3* points, double out[3]) {
+  out[0] = out[1] = out[2] = 0.0;
+  for (PointId q : ids) {
+    const Point3& x = points[q.idx];
+    out[0] += x.x; out[1] += x.y; out[2] += x.z;
+  }
+  const double inv = 1.0 / static_cast<double>(ids.size());
+  out[0] *= inv; out[1] *= inv; out[2] *= inv;
+  return inv;
+}
+
 // Calls fn(e1, e2, e3) (arrays of 3 T, right-handed for a valid corner) for every
 // corner of cell c under metric m. pos(PointId, T out[3]) supplies coordinates, so
 // callers can make one point a ceres::Jet.
