@@ -136,6 +136,18 @@ TEST(Pipeline, ConvertFileReadsAndWrites) {
   EXPECT_EQ(stage_names(r.report), (std::vector<std::string>{"read", "classify", "cuts", "dual", "cleanup", "cells", "check",
                                                            "split", "check_split", "write"}));
   EXPECT_EQ(r.written.find("format")->dump(0), "\"vtu\"");
+  // Each stage records the process's peak memory when it ended: a high-water
+  // mark, so never lower than the stage before; the summary names them all.
+  const Json summary = convert_summary(r, params);
+  const Json* peak = summary.find("peak_rss_mb");
+  ASSERT_NE(peak, nullptr);
+  for (std::size_t i = 0; i < r.report.stages.size(); ++i) {
+    const StageRecord& s = r.report.stages[i];
+    EXPECT_GT(s.peak_rss_mb, 1.0) << s.name;
+    if (i > 0) EXPECT_GE(s.peak_rss_mb, r.report.stages[i - 1].peak_rss_mb) << s.name;
+    ASSERT_NE(peak->find(s.name), nullptr) << s.name;
+    EXPECT_EQ(peak->find(s.name)->dump(0), Json(s.peak_rss_mb).dump(0)) << s.name;
+  }
   const PolyMesh back = read_vtu_poly((d / "c.vtu").string());
   EXPECT_EQ(back.num_cells(), r.mesh.num_cells());
   const CheckResult c = check_mesh(back, nullptr);

@@ -47,6 +47,9 @@ struct Context {
   // lagged model (it spares the neighbours of the tangled cells; the later
   // untangling sweeps, over the few cells left, use the full model).
   bool lagged_untangling = false;
+  // Corrected, the later untangling sweeps: the full model for a point with an
+  // invalid cell at its visit, the plain lagged model for the others.
+  bool full_model_where_invalid = false;
 
   // known: the cells' exact star verdicts (empty, or not one per cell: tested here).
   Context(PolyMesh& m, const ClassifiedTetMesh* primal, const OptimParams& p, std::span<const CellVerdict> known = {});

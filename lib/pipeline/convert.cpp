@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstdio>
 
+#include <sys/resource.h>
+
 #include <tbb/parallel_invoke.h>
 
 #include "core/error.h"
@@ -20,6 +22,12 @@
 namespace polydual {
 
 namespace {
+// The process's peak resident set so far, MB (Linux: ru_maxrss in KiB).
+double peak_rss_mb() {
+  rusage u{};
+  return getrusage(RUSAGE_SELF, &u) == 0 ? double(u.ru_maxrss) / 1024.0 : 0.0;
+}
+
 // Runs one stage, times it and records it; returns the stage's value. A
 // pending interrupt (Ctrl-C, SIGTERM) stops the pipeline between stages.
 template <class F>
@@ -28,7 +36,7 @@ auto run_stage(ConvertReport& report, const ConvertHooks& hooks, const char* nam
   const Stopwatch clock;
   Json stats;
   auto value = stage(stats);
-  report.stages.push_back(StageRecord{name, clock.seconds(), std::move(stats)});
+  report.stages.push_back(StageRecord{name, clock.seconds(), std::move(stats), peak_rss_mb()});
   if (hooks.stage_done) hooks.stage_done(report.stages.back());
   return value;
 }

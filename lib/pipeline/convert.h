@@ -30,6 +30,7 @@ struct StageRecord {
   std::string name;  // "classify", "dual", "check", "optimize", ...
   double seconds = 0;
   Json stats;        // the stage's own stats record
+  double peak_rss_mb = 0;  // the process's peak resident memory when the stage ended (getrusage)
 };
 
 struct ConvertReport {

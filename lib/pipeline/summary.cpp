@@ -131,6 +131,14 @@ Json seconds_summary(const ConvertReport& report) {
   return seconds;
 }
 
+// The process's peak resident memory (MB) when each stage ended: where a
+// run's memory peak is reached.
+Json peak_memory_summary(const ConvertReport& report) {
+  Json j = Json::object();
+  for (const StageRecord& s : report.stages) j.set(s.name, s.peak_rss_mb);
+  return j;
+}
+
 }  // namespace
 
 Json ignored_summary(const IgnoredEntities& ignored) {
@@ -225,6 +233,7 @@ Json convert_summary(const ConvertResult& r, const PipelineParams& params) {
   if (const StageRecord* tet = r.report.stage("optimize_tets")) j.set("optimize_tets", tet->stats);
   j.set("params", params.to_json());
   j.set("seconds", seconds_summary(r.report));
+  j.set("peak_rss_mb", peak_memory_summary(r.report));
   return j;
 }
 

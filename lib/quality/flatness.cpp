@@ -107,8 +107,8 @@ FlatnessStats flatness_stats(const PolyMesh& mesh) {
   // Chunks of faces measured in parallel, then summed serially in face order
   // (deterministic, and the same sums as one serial pass): one chunk's
   // values alive at a time, not one per face (16 B per face, the peak of a
-  // 1M-tet conversion when it was).
-  constexpr std::size_t kChunk = std::size_t(1) << 16;
+  // 1M-tet conversion when it was; 256 KB, as it runs beside the writer).
+  constexpr std::size_t kChunk = std::size_t(1) << 14;
   std::vector<FaceFlatness> per(std::min(kChunk, mesh.num_faces()));
   FlatnessStats st;
   st.faces = mesh.num_faces();
