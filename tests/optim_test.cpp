@@ -11,6 +11,8 @@
 #include <tbb/global_control.h>
 
 #include "core/error.h"
+#include "generate/random_mesh.h"
+#include "pipeline/convert.h"
 #include "mesh/classified_tet_mesh.h"
 #include "generate/hex_block.h"
 #include "mesh/poly_mesh.h"
@@ -268,6 +270,37 @@ TEST(Optim, AnalyticLocalDerivativesMatchJetAndItsDifferences) {
       }
     }
   }
+}
+
+// Lazy constraints (the local schemes): no search until a point's first
+// ensure(), then the primitive of the eager search from the same position, and
+// the same degrees of freedom from the start.
+TEST(Optim, LazyConstraintsFindTheEagerPrimitives) {
+  RandomMeshParams rp;
+  rp.seed = 3;
+  rp.num_points = 300;
+  PipelineParams pp;
+  pp.split.enabled = false;
+  pp.optim.method = OptimParams::Method::None;
+  const ConvertResult r = convert(random_classified_mesh(rp), pp);
+  const ClassifiedTetMesh& primal = r.primal;
+  PolyMesh m = r.mesh;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-0.05, 0.05);
+  for (Point3& x : m.points) x += Vec3{u(rng), u(rng), u(rng)};  // off the facets: a real search
+  const BoundaryConstraints eager(primal, m);
+  BoundaryConstraints lazy(primal, m, true);
+  std::size_t searched = 0;
+  for (std::size_t i = 0; i < m.num_points(); ++i) {
+    const PointId p(i);
+    ASSERT_EQ(lazy.dof(p), eager.dof(p)) << i;
+    if (eager.dof(p) != 1 && eager.dof(p) != 2) continue;
+    EXPECT_EQ(lazy.current(p), BoundaryConstraints::kNone) << i;
+    lazy.ensure(p);
+    EXPECT_EQ(lazy.current(p), eager.current(p)) << i;
+    ++searched;
+  }
+  EXPECT_GT(searched, 10u);
 }
 
 TEST(Optim, BoundaryPointsStayOnTheOriginalFacetisation) {

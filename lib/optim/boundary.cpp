@@ -1,5 +1,7 @@
 #include "optim/boundary.h"
 
+#include <set>
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -44,12 +46,12 @@ Point3 BoundaryConstraints::closest(std::uint32_t i, const Point3& x) const {
   return closest_point_on_triangle(x, verts_[q.v[0].idx], verts_[q.v[1].idx], verts_[q.v[2].idx]);
 }
 
-BoundaryConstraints::BoundaryConstraints(const ClassifiedTetMesh& primal, const PolyMesh& mesh)
-    : verts_(primal.points()), cls_(mesh.point_class) {
+BoundaryConstraints::BoundaryConstraints(const ClassifiedTetMesh& primal, const PolyMesh& mesh, bool lazy)
+    : verts_(primal.points()), cls_(mesh.point_class), mesh_(&mesh), lazy_(lazy) {
   collect_primitives(primal);
   index_vertex_primitives();
   build_grid();
-  assign_initial_primitives(mesh);
+  assign_initial_primitives();
 }
 
 // The facetisation: triangles on model faces, then edges on model edges.
@@ -147,23 +149,31 @@ void BoundaryConstraints::build_grid() {
 }
 
 // Initial primitive of every boundary point: the nearest of its model entity
-// (parallel over the points: each search reads the grid only).
-void BoundaryConstraints::assign_initial_primitives(const PolyMesh& mesh) {
-  const std::size_t np = mesh.num_points();
+// (parallel over the points: each search reads the grid only). A point of an
+// entity without primitives stays fixed. Lazy: only the degrees of freedom
+// now, each search at the point's first ensure().
+void BoundaryConstraints::assign_initial_primitives() {
+  const std::size_t np = mesh_->num_points();
+  std::set<std::pair<int, std::int32_t>> entities;  // (dim, tag) with a primitive
+  for (const Prim& q : prims_) entities.insert({q.dim, q.tag});
   dof_.assign(np, 0);
   current_.assign(np, kNone);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, np, 2048), [&](const auto& rg) {
     for (std::size_t p = rg.begin(); p != rg.end(); ++p) {
       const ModelRef r = cls_[p];
       if (r.dim == 3) dof_[p] = 3;
-      if (r.dim != 1 && r.dim != 2) continue;
-      const std::uint32_t seed = mesh.point_origin.size() == np ? origin_primitive(mesh.point_origin[p], r) : kNone;
-      const std::uint32_t q = nearest_by_grid(mesh.points[p], r.dim, r.tag, seed);
-      if (q == kNone) continue;  // no primitive of this entity: keep the point fixed
-      current_[p] = q;
+      if ((r.dim != 1 && r.dim != 2) || !entities.count({r.dim, r.tag}) || !is_finite(mesh_->points[p])) continue;
       dof_[p] = static_cast<std::uint8_t>(r.dim);
+      if (!lazy_) assign_initial(p);
     }
   });
+}
+
+void BoundaryConstraints::assign_initial(std::size_t p) {
+  const ModelRef r = cls_[p];
+  const bool origins = mesh_->point_origin.size() == mesh_->num_points();
+  const std::uint32_t seed = origins ? origin_primitive(mesh_->point_origin[p], r) : kNone;
+  current_[p] = nearest_by_grid(mesh_->points[p], r.dim, r.tag, seed);
 }
 
 std::uint32_t BoundaryConstraints::origin_primitive(const PointOrigin& o, const ModelRef& r) const {

@@ -32,8 +32,18 @@ class BoundaryConstraints {
 
   // Finds each boundary point's nearest primitive of its model entity (uniform
   // grid search). A point whose model entity has no primitive in `primal` is
-  // fixed (dof 0).
-  BoundaryConstraints(const ClassifiedTetMesh& primal, const PolyMesh& mesh);
+  // fixed (dof 0). Lazy: the search for a point runs at its first ensure()
+  // instead, from its position then (the same primitive as the eager search
+  // while the point has not moved: an optimiser that moves only the points
+  // it visits, and ensures each before its first move, sees the same
+  // constraints; --optimize untangle visits a few hundred of ~60k boundary
+  // points at 100k tets). `mesh` must outlive a lazy instance.
+  BoundaryConstraints(const ClassifiedTetMesh& primal, const PolyMesh& mesh, bool lazy = false);
+  // Lazy: finds p's initial primitive if not yet done (from p's current
+  // position). Concurrent calls for different points are safe.
+  void ensure(PointId p) {
+    if (lazy_ && current_[p.idx] == kNone && (dof_[p.idx] == 1 || dof_[p.idx] == 2)) assign_initial(p.idx);
+  }
 
   // Degrees of freedom of point p: 0 fixed, 1 on a model edge, 2 on a model face,
   // 3 interior (free).
@@ -71,7 +81,8 @@ class BoundaryConstraints {
   void collect_primitives(const ClassifiedTetMesh& primal);
   void index_vertex_primitives();
   void build_grid();
-  void assign_initial_primitives(const PolyMesh& mesh);
+  void assign_initial_primitives();
+  void assign_initial(std::size_t p);  // p's nearest primitive (dof_[p] already set)
   Point3 closest(std::uint32_t prim, const Point3& x) const;
   // seed (kNone: none): a primitive of the entity tried first; the result is
   // the same with or without it (it only lets the box test skip more).
@@ -90,6 +101,8 @@ class BoundaryConstraints {
   std::vector<ModelRef> cls_;                     // per dual point
   std::vector<std::uint8_t> dof_;
   std::vector<std::uint32_t> current_;
+  const PolyMesh* mesh_ = nullptr;  // positions and origins of the points
+  bool lazy_ = false;
   // Uniform grid over primitive bounding boxes (initial assignment only).
   Point3 lo_;
   double h_ = 1;

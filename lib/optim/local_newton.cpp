@@ -53,6 +53,7 @@ class VertexNewton {
     int accepted = 0;
     *moved = 0;
     ctx_.touched[p.idx] = 1;  // this visit may write p (its own flag: no other thread's)
+    if (ctx_.bc) ctx_.bc->ensure(p);  // its initial primitive, before any move (lazy constraints)
     for (int step = 0; step < prm.newton_steps; ++step) {
       const Point3 o = pts[p.idx];
       Vec3 B[3];

@@ -23,7 +23,9 @@ Context::Context(PolyMesh& m, const ClassifiedTetMesh* primal, const OptimParams
     : mesh(m), params(p), start(std::chrono::steady_clock::now()), lap_start(start) {
   stencil = build_stencil(m, p.method == OptimParams::Method::Global);  // its gradients need loop_local
   lap("stencil");
-  if (primal) bc = std::make_unique<BoundaryConstraints>(*primal, m);
+  // The local schemes move only the points they visit and ensure() each
+  // first (VertexNewton::optimise): their initial primitives are found then.
+  if (primal) bc = std::make_unique<BoundaryConstraints>(*primal, m, p.method != OptimParams::Method::Global);
   lap("constraints");
   dof.assign(m.num_points(), 0);
   for (std::size_t i = 0; i < m.num_points(); ++i) {
