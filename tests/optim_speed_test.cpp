@@ -10,15 +10,14 @@
 
 #include "core/error.h"
 #include "generate/hex_block.h"
-#include "generate/random_mesh.h"
 #include "optim/lagged_objective.h"
 #include "optim/objective.h"
 #include "optim/optimize.h"
-#include "pipeline/convert.h"
 #include "predicates/predicates.h"
 #include "quality/metrics.h"
 #include "quality/star_verdict.h"
 #include "quality/stencil.h"
+#include "raw_random_dual.h"
 
 namespace polydual {
 namespace {
@@ -308,15 +307,7 @@ TEST(OptimSpeed, UntanglingStopsWhenTheInvalidCountStalls) {
 
 // The raw dual (no split, no optimiser) of a 400-point random classified
 // mesh: cells the first untangling sweep leaves invalid.
-PolyMesh raw_random_dual() {
-  RandomMeshParams rp;
-  rp.seed = 1;
-  rp.num_points = 400;
-  PipelineParams pp;
-  pp.split.enabled = false;
-  pp.optim.method = OptimParams::Method::None;
-  return convert(random_classified_mesh(rp), pp).mesh;
-}
+PolyMesh raw_random_dual() { return raw_random_conversion(1, 400).mesh; }
 
 // Untangling spares the neighbours of the tangled cells: its first sweep moves
 // the ends of the bad tets' edges on the lagged model (centres held), the

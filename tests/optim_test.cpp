@@ -11,8 +11,6 @@
 #include <tbb/global_control.h>
 
 #include "core/error.h"
-#include "generate/random_mesh.h"
-#include "pipeline/convert.h"
 #include "mesh/classified_tet_mesh.h"
 #include "generate/hex_block.h"
 #include "mesh/poly_mesh.h"
@@ -21,6 +19,7 @@
 #include "optim/optimize.h"
 #include "quality/star_verdict.h"
 #include "quality/stencil.h"
+#include "raw_random_dual.h"
 
 namespace polydual {
 namespace {
@@ -276,13 +275,7 @@ TEST(Optim, AnalyticLocalDerivativesMatchJetAndItsDifferences) {
 // ensure(), then the primitive of the eager search from the same position, and
 // the same degrees of freedom from the start.
 TEST(Optim, LazyConstraintsFindTheEagerPrimitives) {
-  RandomMeshParams rp;
-  rp.seed = 3;
-  rp.num_points = 300;
-  PipelineParams pp;
-  pp.split.enabled = false;
-  pp.optim.method = OptimParams::Method::None;
-  const ConvertResult r = convert(random_classified_mesh(rp), pp);
+  const ConvertResult r = raw_random_conversion(3, 300);
   const ClassifiedTetMesh& primal = r.primal;
   PolyMesh m = r.mesh;
   std::mt19937 rng(5);

@@ -40,16 +40,15 @@ struct Context {
   // corners (cell_energy_gradient), at the positions of the last refresh.
   std::vector<Vec3> grad_R, grad_F;
   double omega = 1.0;                        // the local scheme's relaxation in the current sweep
-  // Corrected: the points of cells above this quality (at the last record) use
-  // the full analytic model; -infinity while untangling (every point).
+  // Corrected, smoothing and polish: the points of cells above this quality
+  // (at the last record) use the full analytic model.
   double full_model_above = 0;
-  // Corrected, Method::Untangle: the first untangling sweep uses the plain
-  // lagged model (it spares the neighbours of the tangled cells; the later
-  // untangling sweeps, over the few cells left, use the full model).
-  bool lagged_untangling = false;
-  // Corrected, the later untangling sweeps: the full model for a point with an
-  // invalid cell at its visit, the plain lagged model for the others.
-  bool full_model_where_invalid = false;
+  // Corrected, untangling sweeps (None: a smoothing or polish sweep). The
+  // first uses the plain lagged model (it spares the neighbours of the
+  // tangled cells); the later ones, over the few cells left, the full model
+  // at a point with a cell still invalid at its visit, the lagged one elsewhere.
+  enum class Untangling { None, Lagged, FullWhereInvalid };
+  Untangling untangling = Untangling::None;
 
   // known: the cells' exact star verdicts (empty, or not one per cell: tested here).
   Context(PolyMesh& m, const ClassifiedTetMesh* primal, const OptimParams& p, std::span<const CellVerdict> known = {});

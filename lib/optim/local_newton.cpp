@@ -153,8 +153,8 @@ class VertexNewton {
   OptimParams::Derivatives model_of(std::span<const std::uint32_t> cells) const {
     const OptimParams::Derivatives d = ctx_.params.derivatives;
     if (d != OptimParams::Derivatives::Corrected) return d;
-    if (ctx_.lagged_untangling) return OptimParams::Derivatives::Lagged;
-    if (ctx_.full_model_where_invalid) {
+    if (ctx_.untangling == Context::Untangling::Lagged) return OptimParams::Derivatives::Lagged;
+    if (ctx_.untangling == Context::Untangling::FullWhereInvalid) {
       for (std::uint32_t c : cells)
         if (!ctx_.cell_valid[c]) return OptimParams::Derivatives::Analytic;
       return OptimParams::Derivatives::Lagged;
@@ -530,6 +530,7 @@ void polish_worst(Context& ctx, const Passes& passes, tbb::enumerable_thread_spe
       return false;
     };
     IterationRecord one;
+    ctx.untangling = Context::Untangling::None;
     ctx.full_model_above = mean + kPolishFullModelShare * (worst - mean);
     sweep_points(ctx, passes, solvers, sweep + ++k, last_change, active, one);
     counts.visited += one.visited;
@@ -690,11 +691,11 @@ void run_local(Context& ctx) {
     // at 100k: the same invalid counts per sweep, 40-60% of the visits on the
     // full model, the later sweeps ~25% faster).
     // The first smoothing sweep then uses no full model (kFullModelRatio).
-    ctx.lagged_untangling = untangling && sweep == 1;
-    ctx.full_model_where_invalid = untangling && sweep > 1;
-    ctx.full_model_above = untangling ? -std::numeric_limits<double>::infinity()
-                           : first_smoothing ? std::numeric_limits<double>::infinity()
-                                             : kFullModelRatio * ctx.last_stats.mean;
+    ctx.untangling = !untangling ? Context::Untangling::None
+                     : sweep == 1 ? Context::Untangling::Lagged
+                                  : Context::Untangling::FullWhereInvalid;
+    ctx.full_model_above =
+        first_smoothing ? std::numeric_limits<double>::infinity() : kFullModelRatio * ctx.last_stats.mean;
     first_smoothing = first_smoothing && untangling;
     // Untangling: rings grow by one cell layer per sweep (changes of the
     // previous sweep only); smoothing: changes of this or the previous sweep.
