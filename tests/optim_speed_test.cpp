@@ -236,12 +236,36 @@ TEST(OptimSpeed, PolishNeverRaisesTheWorstCell) {
     PolyMesh a = jittered_block(7, 0.3, seed), b = a;
     OptimParams p, q;
     p.polish_sweeps = 0;
+    q.worst_rounds = 0;  // the polish alone (the min-max descent: the next test)
     p.tol = q.tol = q.effective_tol();  // the same smoothing sweeps before the polish
     const OptimReport ra = optimize(a, nullptr, p);
     const OptimReport rb = optimize(b, nullptr, q);
     EXPECT_EQ(rb.iterations.size(), ra.iterations.size() + 1) << "the polish ran and made one record";
     EXPECT_LE(rb.after.max, ra.after.max) << "seed " << seed;
     EXPECT_EQ(rb.invalid_after, 0);
+  }
+}
+
+// The min-max descent after the polish (optim/worst_descent.cpp) lowers the
+// max quality below the polish's, leaves the mean where it was, keeps every
+// cell valid by the exact test; its moves are in the polish's record, which
+// is a full pass's (IncrementalRecordEqualsAFullPass runs it too).
+TEST(OptimSpeed, WorstDescentLowersTheMaxAndKeepsEveryCellValid) {
+  for (unsigned seed : {5u, 6u, 7u}) {
+    PolyMesh a = jittered_block(7, 0.3, seed), b = a;
+    OptimParams p, q;
+    p.worst_rounds = 0;
+    const OptimReport ra = optimize(a, nullptr, p);
+    const OptimReport rb = optimize(b, nullptr, q);
+    ASSERT_EQ(rb.iterations.size(), ra.iterations.size()) << "the descent is in the polish's record";
+    EXPECT_GT(rb.iterations.back().updates, ra.iterations.back().updates) << "the descent moved points";
+    EXPECT_LT(rb.after.max, ra.after.max) << "seed " << seed;
+    EXPECT_NEAR(rb.after.mean, ra.after.mean, 1e-3 * ra.after.mean) << "seed " << seed;
+    EXPECT_EQ(rb.invalid_after, 0);
+    for (std::uint8_t v : valid_flags(b)) EXPECT_TRUE(v);
+    std::size_t moved = 0;
+    for (std::size_t i = 0; i < a.num_points(); ++i) moved += !(a.points[i] == b.points[i]);
+    EXPECT_LT(moved, a.num_points() / 4) << "only the points of the worst cells move";
   }
 }
 

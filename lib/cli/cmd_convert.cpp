@@ -19,7 +19,7 @@ const CommandSpec kConvert{
     "VTU (VTK_POLYHEDRON) or an OpenFOAM case directory (OUT/constant/polyMesh).",
     1, 1,
     {"-o", "--format", "--force", "--vtu-encoding", "--zlib", "--feature-angle", "--no-cleanup", "--collapse-tol", "--optimize", "--planarity", "--optimize-tets", "--tet-sweeps", "--tet-flips", "--tet-flip-rounds", "--no-split", "--split-rounds", "--require-valid", "--metric",
-     "--derivatives", "--relaxation", "--tol", "--polish-sweeps", "--polish-share", "--settle-move", "--max-iter", "--threads", "--json", "--quiet"}};
+     "--derivatives", "--relaxation", "--tol", "--polish-sweeps", "--polish-share", "--worst-rounds", "--settle-move", "--max-iter", "--threads", "--json", "--quiet"}};
 
 const CommandSpec kCheck{
     "check", "check FILE.vtu [--json] [--threads N] [--quiet]",

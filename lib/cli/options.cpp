@@ -105,6 +105,10 @@ const std::vector<OptionDef> kTable = {
      "local scheme: the polish moves the points of the cells whose quality exceeds mean + S x (worst - mean) and of their neighbours",
      [](const Settings& d) { return num(d.params.optim.polish_share); },
      [](Settings& s, const std::string& v) { s.params.optim.polish_share = std::stod(v); }},
+    {"--worst-rounds", K::Int, "N", 0, OptimParams::kMaxIterLimit,
+     "local scheme, after the polish: rounds of min-max descent at the points of the worst cell (0: none)",
+     [](const Settings& d) { return std::to_string(d.params.optim.worst_rounds); },
+     [](Settings& s, const std::string& v) { s.params.optim.worst_rounds = std::stoi(v); }},
     {"--settle-move", K::Real, "X", 0, OptimParams::kMaxSettleMove,
      "local scheme: a point is revisited only while a point of its cells moved by more than X x the local "
      "length in the last two sweeps (0: while anything around it moved)",

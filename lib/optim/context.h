@@ -79,6 +79,9 @@ struct Context {
 };
 
 void run_local(Context& ctx);
+// Min-max descent on the worst cells (worst_descent.cpp), after the local
+// scheme's polish; returns the visits and accepted steps.
+IterationRecord descend_worst(Context& ctx);
 void run_global(Context& ctx);
 
 }  // namespace polydual::optim_detail

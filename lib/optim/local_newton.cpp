@@ -483,7 +483,8 @@ void grow_layers(const Context& ctx, std::vector<char>& near, int reach) {
 // worst quality is not lower is undone (its points restored: every cell was
 // valid before it, so every cell is valid again), so the polish never makes
 // the worst cell worse. Only the cells around the polished points get their
-// qualities and centre gradients refreshed; the phase ends with one record.
+// qualities and centre gradients refreshed; the phase ends with the min-max
+// descent on the worst cells (worst_descent.cpp) and one record.
 constexpr int kPolishReach = 1;
 constexpr double kPolishTol = 1e-5;
 // Corrected derivatives: from the second smoothing sweep on, the points of
@@ -546,7 +547,14 @@ void polish_worst(Context& ctx, const Passes& passes, tbb::enumerable_thread_spe
     if (!(w < worst * (1 - kPolishTol))) break;
     worst = w;
   }
-  if (k > 0) record_sweep(ctx, sweep + k, counts);
+  if (k == 0) return;
+  // The polish's last stage: min-max descent on the worst cells (in the same record).
+  ctx.lap("iterations");
+  const IterationRecord d = descend_worst(ctx);
+  ctx.lap("worst_descent");
+  counts.visited += d.visited;
+  counts.updates += d.updates;
+  record_sweep(ctx, sweep + k, counts);
 }
 
 // near[c]: cell c is within kUntangleReach point-sharing layers of a cell
@@ -746,8 +754,9 @@ void run_local(Context& ctx) {
     if (std::fabs(f_prev - f) < prm.effective_tol() * std::fabs(f_prev)) break;
     f_prev = f;
   }
-  if (!untangle_only && prm.polish_sweeps > 0 && prm.max_iter > 0 && ctx.report->iterations.back().invalid == 0)
+  if (!untangle_only && prm.polish_sweeps > 0 && prm.max_iter > 0 && ctx.report->iterations.back().invalid == 0) {
     polish_worst(ctx, whole_passes(), solvers, sweep, last_change);
+  }
 }
 
 }  // namespace polydual::optim_detail

@@ -256,6 +256,7 @@ void OptimParams::validate() const {
   check_param("OptimParams::max_halvings", "halvings", {0, double(kMaxHalvings)}, max_halvings);
   check_param("OptimParams::polish_sweeps", "sweeps", {0, double(kMaxIterLimit)}, polish_sweeps);
   check_param("OptimParams::polish_share", "share of the range from the mean to the worst quality", {0.0, 1.0}, polish_share);
+  check_param("OptimParams::worst_rounds", "rounds", {0, double(kMaxIterLimit)}, worst_rounds);
   check_param("OptimParams::relaxation", "over-relaxation factor", {1.0, kMaxRelaxation}, relaxation);
   check_param("OptimParams::fd_step", "relative to cbrt(V0)", {0, kMaxFdStep, true}, fd_step);
   check_param("OptimParams::global_iterations_per_round", "iterations", {1, double(kMaxIterLimit)},
@@ -281,6 +282,7 @@ Json OptimParams::to_json() const {
   j.set("relaxation", relaxation);
   j.set("polish_sweeps", polish_sweeps);
   j.set("polish_share", polish_share);
+  j.set("worst_rounds", worst_rounds);
   j.set("fd_step", fd_step);
   j.set("planarity", planarity);
   j.set("global_iterations_per_round", global_iterations_per_round);
