@@ -21,6 +21,7 @@
 #include <tbb/parallel_invoke.h>
 #include <tbb/parallel_pipeline.h>
 #include <tbb/parallel_reduce.h>
+#include <tbb/task_arena.h>
 
 #include "core/bits.h"
 #include "core/error.h"
@@ -290,6 +291,16 @@ struct EdgeFaceBlock {
   std::vector<std::uint32_t> model_faces;
 };
 
+// Room for the faces of n edges in a block (make_all_edge_faces).
+void reserve_block(PolyMesh& faces, std::size_t n) {
+  faces.face_offsets.reserve(n + 1);
+  faces.face_owner.reserve(n);
+  faces.face_neighbour.reserve(n);
+  faces.face_kind.reserve(n);
+  faces.face_tag.reserve(n);
+  faces.face_points.reserve(6 * n);
+}
+
 // Appends block b's faces to pm, renumbered after pm's own.
 void append_faces(PolyMesh& pm, std::vector<std::uint32_t>& model_faces, const EdgeFaceBlock& b) {
   const std::uint32_t f0 = std::uint32_t(pm.num_faces()), p0 = std::uint32_t(pm.face_points.size());
@@ -303,17 +314,24 @@ void append_faces(PolyMesh& pm, std::vector<std::uint32_t>& model_faces, const E
 }
 
 // Every edge's faces, in edge order: blocks of edges are built in parallel
-// and appended in order (the same faces for any thread count); a few blocks
-// in flight at a time, so the copies stay small.
+// and appended in order (the same faces for any thread count); two blocks per
+// thread in flight at a time, so the copies stay small. They are made while
+// the dual's arrays are at their largest, and land above them in the heap:
+// 8 blocks of 8192 edges, their arrays grown by doubling, raised the
+// process's memory peak ~2 MB above the live data (twomat 100k, the split's
+// final build). A block's arrays are reserved for one face of 6 points per
+// edge (every tet is in the rings of its 6 edges, and a mesh has more edges
+// than tets); a block that needs more grows.
 template <bool kCuts>
 void make_all_edge_faces(const ClassifiedTetMesh& m, const CutTopology& ct, const VertexSides& sides,
                          const DualPoints& d, PolyMesh& pm, std::vector<std::uint32_t>& model_faces,
                          std::span<const char> active) {
-  constexpr std::size_t kBlock = 8192;
+  constexpr std::size_t kBlock = 2048;
   const std::size_t ne = m.num_edges();
+  const std::size_t tokens = 2 * std::size_t(std::max(1, tbb::this_task_arena::max_concurrency()));
   std::size_t next = 0;
   tbb::parallel_pipeline(
-      8,
+      tokens,
       tbb::make_filter<void, std::size_t>(tbb::filter_mode::serial_in_order,
                                           [&](tbb::flow_control& fc) -> std::size_t {
                                             if (next >= ne) fc.stop();
@@ -325,6 +343,7 @@ void make_all_edge_faces(const ClassifiedTetMesh& m, const CutTopology& ct, cons
               tbb::filter_mode::parallel,
               [&](std::size_t e0) {
                 auto b = std::make_shared<EdgeFaceBlock>();
+                reserve_block(b->faces, std::min(ne, e0 + kBlock) - e0);
                 make_edge_faces<kCuts>(m, ct, sides, d, b->faces, b->model_faces, active, e0,
                                        std::min(ne, e0 + kBlock));
                 return b;
@@ -671,9 +690,14 @@ DualDraft build_dual_draft(const ClassifiedTetMesh& m, const DualParams& params,
   if (scope && !scope->active.empty() && scope->active.size() != m.num_vertices())
     throw UsageError("build_dual_draft: DualScope has " + std::to_string(scope->active.size()) +
                      " active flags for " + std::to_string(m.num_vertices()) + " vertices");
+  // Point origins hold ids up to PointOrigin::kMaxId (poly_mesh.h).
+  if (std::max({m.num_tets(), m.num_triangles(), m.num_edges(), m.num_vertices()}) > PointOrigin::kMaxId)
+    throw InputError(m.source(), "", "too large for the dual: more than " + std::to_string(PointOrigin::kMaxId) +
+                                         " tets, triangles, edges or vertices");
   DualStats local;
   DualStats& st = stats ? *stats : local;
   DualDraft draft;
+  draft.scoped = scope && !scope->active.empty();
   PolyMesh& pm = draft.mesh;
   auto t0 = Clock::now();
   const CutTopology ct = cut_topology(m, cuts);

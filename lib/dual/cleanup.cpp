@@ -164,8 +164,8 @@ std::vector<std::uint32_t> faces_to_rewrite(const PolyMesh& pm, bool merged, Uni
 
 // Drops the points no face uses, keeping the order: points before the first
 // unused one keep their ids (usually all of them: then nothing moves).
-// Returns the number dropped.
-std::size_t drop_unused_points(PolyMesh& pm) {
+// Returns the number dropped. shrink: the arrays may be shrunk.
+std::size_t drop_unused_points(PolyMesh& pm, bool shrink) {
   const std::size_t np = pm.num_points();
   std::vector<char> used(np, 0);
   for (PointId p : pm.face_points) used[p.idx] = 1;
@@ -190,8 +190,9 @@ std::size_t drop_unused_points(PolyMesh& pm) {
   if (!pm.point_origin.empty()) pm.point_origin.resize(k);
   for (PointId& p : pm.face_points) p = PointId(new_id[p.idx]);
   // Shrinking copies each array while the old one is alive, at the memory
-  // peak of the build: worth it only when much was dropped.
-  if (8 * (np - k) > np) {
+  // peak of the build: worth it only when much was dropped, and never for a
+  // short-lived (scoped) dual.
+  if (shrink && 8 * (np - k) > np) {
     pm.points.shrink_to_fit();
     pm.point_class.shrink_to_fit();
     pm.point_origin.shrink_to_fit();
@@ -229,7 +230,7 @@ Json CleanupStats::to_json() const {
   d.pinned = {};
   const bool merged = st.merged_points + st.collapsed_points > 0;
   st.dropped_faces = rewrite_touched_faces(pm, faces_to_rewrite(pm, merged, uf), uf);
-  st.dropped_points = drop_unused_points(pm);
+  st.dropped_points = drop_unused_points(pm, !d.scoped);
   st.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   return st;
 }

@@ -39,6 +39,11 @@ struct DualDraft {
   // Absolute length (model units) below which an edge between two points of
   // equal classification is collapsed; 0: no collapse.
   double collapse_length = 0;
+  // Built with a DualScope (build_dual.h): most points belong to no built
+  // face. Such a dual lives for one split round only, so the cleanup drops
+  // those points without shrinking the arrays (a shrink copies them, and in
+  // the split's first local round that copy was the process's memory peak).
+  bool scoped = false;
 };
 
 }  // namespace polydual

@@ -15,7 +15,7 @@ std::vector<PointId> PolyMesh::cell_points(CellId c) const {
 
 std::span<const PointId> CellPointScan::operator()(CellId c) {
   if (++gen_ == 0) {  // wrapped: every stamp is stale
-    std::fill(stamp_.begin(), stamp_.end(), 0u);
+    std::fill(stamp_.begin(), stamp_.end(), std::uint16_t(0));
     gen_ = 1;
   }
   out_.clear();

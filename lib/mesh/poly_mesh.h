@@ -21,11 +21,15 @@ namespace polydual {
 // FaceKind (lib/core/classification.h): what a dual face lies on.
 // What primal entity a dual point was made from: dim 3 tet, 2 triangle, 1 edge,
 // 0 vertex, with its id; dim -1 for a point made later (split, optimiser).
+// Packed in 4 bytes (one per dual point, alive at the dual's memory peak): ids
+// up to kMaxId, which build_dual_draft() checks.
 struct PointOrigin {
-  std::int8_t dim = -1;
-  std::uint32_t id = 0;
+  static constexpr std::uint32_t kMaxId = (std::uint32_t(1) << 29) - 1;
+  std::int8_t dim : 3 = -1;
+  std::uint32_t id : 29 = 0;
   friend constexpr bool operator==(PointOrigin, PointOrigin) = default;
 };
+static_assert(sizeof(PointOrigin) == 4);
 
 struct PolyMesh {
   // Points
@@ -104,8 +108,10 @@ struct PolyMesh {
 };
 
 // The distinct points of cells in cell_points' order, without its linear
-// search (quadratic in a cell's size): one stamp per mesh point (4 B each),
-// kept between calls. Not shared between threads; one per thread.
+// search (quadratic in a cell's size): one stamp per mesh point, kept between
+// calls. Not shared between threads; one per thread. The stamps are 2 bytes
+// (every 65535 cells they are all cleared): the scans of check_split's
+// validation run while the whole dual is alive, at the memory peak.
 class CellPointScan {
  public:
   explicit CellPointScan(const PolyMesh& mesh) : mesh_(&mesh), stamp_(mesh.num_points(), 0) {}
@@ -114,9 +120,9 @@ class CellPointScan {
 
  private:
   const PolyMesh* mesh_;
-  std::vector<std::uint32_t> stamp_;  // == gen_: already among the current cell's points
+  std::vector<std::uint16_t> stamp_;  // == gen_: already among the current cell's points
   std::vector<PointId> out_;
-  std::uint32_t gen_ = 0;
+  std::uint16_t gen_ = 0;
 };
 
 }  // namespace polydual

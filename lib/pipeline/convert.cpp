@@ -175,15 +175,19 @@ bool escalate(SplitState& st, const ClassifiedTetMesh& m, const PolyMesh& mesh, 
   return !escalate_vertices(st, m, invalid_per_vertex(st, mesh, check)).empty();
 }
 
-// The whole rebuild with the union of cuts and its exact check, into r.
+// The whole rebuild with the union of cuts and its exact check, into r. Its
+// cells' origins (split/warm_start.h) are found before the build, while no
+// dual is alive: afterwards their side tables would sit on the peak.
 Json whole_build(ConvertResult& r, SplitState& st, const PipelineParams& params) {
   Json sec = Json::object();
   Stopwatch w;
   st.cuts = union_of_cuts(st, r.primal);
+  std::vector<CellId> origin = st.cuts.empty() ? std::vector<CellId>() : cut_cell_origins(r.primal, st.cuts);
   sec.set("cuts", w.seconds());
   w = Stopwatch();
   DualStats ds;
   r.mesh = build_dual(r.primal, params.dual, &ds, &st.cuts);
+  if (!origin.empty() && origin.size() == r.mesh.num_cells()) r.mesh.cell_origin = std::move(origin);
   sec.set("dual", w.seconds());
   sec.set("dual_parts", ds.to_json());
   w = Stopwatch();
@@ -351,7 +355,9 @@ void run_split(ConvertResult& r, SplitState& st, const PipelineParams& params, c
                                 .to_json());
       r.check = check_mesh(r.mesh, &r.primal, false);
     }
-    if (!st.cuts.empty()) r.mesh.cell_origin = cut_cell_origins(r.primal, st.cuts, r.mesh);
+    // The final whole build of the local rounds has them already.
+    if (!st.cuts.empty() && r.mesh.cell_origin.empty())
+      r.mesh.cell_origin = cut_cell_origins(r.primal, st.cuts, r.mesh);
     stats.set("rounds", rounds);
     stats.set("kept_round", best_round);
     stats.set("free_edge_vertices", st.free_edge.num_vertices_cut());

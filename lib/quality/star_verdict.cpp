@@ -5,6 +5,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "predicates/predicates.h"
@@ -109,12 +110,23 @@ CellVerdict star_shaped_verdict(const PolyMesh& mesh, CellId c) {
 
 namespace {
 
-// Per-thread scratch of the verdicts straight from the mesh: `seen[p] == c + 1`
-// when point p is already among cell c's points (one stamp per mesh point,
-// ~5 B per input tet and thread, against ~240 for a whole MeshStencil).
+// Per-thread scratch of the verdicts straight from the mesh: `seen[p] ==
+// stamp` when point p is already among the current cell's points (one stamp
+// per mesh point, ~3 B per input tet and thread, against ~240 for a whole
+// MeshStencil). Two-byte stamps, all cleared when the cell count wraps: the
+// final check of the split runs next to the whole dual, at the memory peak.
 struct MeshScratch {
-  std::vector<std::uint32_t> seen;
+  std::vector<std::uint16_t> seen;
   std::vector<Point3> points;  // [cell points | current face points]
+  std::uint16_t stamp = 0;
+  // The stamp of the next cell (every old stamp then differs from it).
+  std::uint16_t next_stamp() {
+    if (++stamp == 0) {
+      std::fill(seen.begin(), seen.end(), std::uint16_t(0));
+      stamp = 1;
+    }
+    return stamp;
+  }
 };
 
 // The verdict of cell c from the mesh itself, the same decomposition tets as
@@ -123,13 +135,14 @@ struct MeshScratch {
 CellVerdict verdict_from_mesh(const PolyMesh& mesh, std::uint32_t c, MeshScratch& s) {
   const auto cell = mesh.cell(CellId(c));
   s.points.clear();
+  const std::uint16_t stamp = s.next_stamp();
   for (HalfFace h : cell) {
     const auto f = mesh.face(h.face());
     const std::size_t k = f.size();
     for (std::size_t i = 0; i < k; ++i) {
       const PointId p = h.side() == 0 ? f[i] : f[k - 1 - i];
-      if (s.seen[p.idx] != c + 1) {
-        s.seen[p.idx] = c + 1;
+      if (s.seen[p.idx] != stamp) {
+        s.seen[p.idx] = stamp;
         s.points.push_back(mesh.points[p.idx]);
       }
     }

@@ -25,7 +25,7 @@ struct OriginSlots {
   std::size_t size() const { return base[4]; }
   // The slot of o, or size() for an origin that names no entity of the mesh.
   std::size_t of(PointOrigin o) const {
-    if (o.dim < 0 || o.dim > 3 || o.id >= base[o.dim + 1] - base[o.dim]) return size();
+    if (o.dim < 0 || o.id >= base[o.dim + 1] - base[o.dim]) return size();  // dim <= 3 (3 bits)
     return base[o.dim] + o.id;
   }
 };
@@ -74,17 +74,33 @@ std::size_t warm_start(PolyMesh& fresh, const PolyMesh& old, const ClassifiedTet
   return moved;
 }
 
-std::vector<CellId> cut_cell_origins(const ClassifiedTetMesh& m, const VertexCuts& cuts, const PolyMesh& mesh) {
-  const VertexSides plain = compute_sides(m, nullptr), cut = compute_sides(m, &cuts);
-  if (cut.num_cells != mesh.num_cells()) return {};
-  std::vector<CellId> origin(mesh.num_cells(), CellId::invalid());
+namespace {
+// Per side of (m, cuts), the side of (m, no cuts) holding the same tets; and
+// those sides' vertices (cut.cell_vertex) in *vertex when not null.
+std::vector<CellId> side_origins(const ClassifiedTetMesh& m, const VertexCuts& cuts, std::vector<VertexId>* vertex) {
+  const VertexSides plain = compute_sides(m, nullptr);
+  VertexSides cut = compute_sides(m, &cuts);
+  std::vector<CellId> origin(cut.num_cells, CellId::invalid());
   for (std::size_t vi = 0; vi < m.num_vertices(); ++vi) {
     const VertexId v(vi);
     for (TetId t : m.vertex_tets(v)) origin[cut.cell(t, v).idx] = plain.cell(t, v);
   }
-  for (std::size_t c = 0; c < origin.size(); ++c)
-    if (!origin[c].valid() || mesh.cell_primal[c] != VertexId(m.input_vertex(cut.cell_vertex[c]))) return {};
+  if (vertex) *vertex = std::move(cut.cell_vertex);
   return origin;
+}
+}  // namespace
+
+std::vector<CellId> cut_cell_origins(const ClassifiedTetMesh& m, const VertexCuts& cuts, const PolyMesh& mesh) {
+  std::vector<VertexId> vertex;
+  std::vector<CellId> origin = side_origins(m, cuts, &vertex);
+  if (origin.size() != mesh.num_cells()) return {};
+  for (std::size_t c = 0; c < origin.size(); ++c)
+    if (!origin[c].valid() || mesh.cell_primal[c] != VertexId(m.input_vertex(vertex[c]))) return {};
+  return origin;
+}
+
+std::vector<CellId> cut_cell_origins(const ClassifiedTetMesh& m, const VertexCuts& cuts) {
+  return side_origins(m, cuts, nullptr);
 }
 
 }  // namespace polydual

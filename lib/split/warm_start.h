@@ -29,4 +29,11 @@ std::size_t warm_start(PolyMesh& fresh, const PolyMesh& old, const ClassifiedTet
 // (m, cuts) (a mesh that was not built from m).
 std::vector<CellId> cut_cell_origins(const ClassifiedTetMesh& m, const VertexCuts& cuts, const PolyMesh& mesh);
 
+// The same origins for the dual that build_dual(m, params, stats, &cuts) will
+// return, before it is built: its cells are the sides of (m, cuts) in the
+// order cut_cell_origins reads them (dual/sides.h, the builder's numbering),
+// whatever the DualParams. Computed while no dual is alive, so the two side
+// tables are not held next to the whole dual (the split's memory peak).
+std::vector<CellId> cut_cell_origins(const ClassifiedTetMesh& m, const VertexCuts& cuts);
+
 }  // namespace polydual
