@@ -28,13 +28,20 @@ struct CmdResult {
   std::string err;  // stderr
 };
 
+// This process's scratch directory, removed when the process exits (each
+// test runs in a process of its own under ctest).
+struct ScratchRoot {
+  fs::path path = fs::temp_directory_path() / ("polydual_cli_options_" + std::to_string(::getpid()));
+  ScratchRoot() { fs::create_directories(path); }
+  ~ScratchRoot() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+};
+
 fs::path scratch_root() {
-  static const fs::path d = [] {
-    fs::path p = fs::temp_directory_path() / ("polydual_cli_options_" + std::to_string(::getpid()));
-    fs::create_directories(p);
-    return p;
-  }();
-  return d;
+  static const ScratchRoot root;
+  return root.path;
 }
 
 std::string slurp(const fs::path& p) {
