@@ -15,7 +15,7 @@ include(CMakePackageConfigHelpers)
 set(POLYDUAL_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/polydual)
 
 install(TARGETS polydual RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-# Where the command looks for them (lib/cli/module_loader.h).
+# Where the command looks for them (lib/core/module_loader.h).
 install(TARGETS polydual_gmsh polydual_lbfgs LIBRARY DESTINATION ${POLYDUAL_GMSH_MODULE_DIR})
 install(TARGETS polydual_core EXPORT polydual-targets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(TARGETS polydual_generate EXPORT polydual-generate-targets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
@@ -24,7 +24,8 @@ install(TARGETS polydual_generate EXPORT polydual-generate-targets ARCHIVE DESTI
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/lib/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/polydual
   FILES_MATCHING PATTERN "*.h"
   PATTERN "cli" EXCLUDE
-  PATTERN "alloc" EXCLUDE)
+  PATTERN "alloc" EXCLUDE
+  PATTERN "module_loader.h" EXCLUDE)  # built into the command only
 install(EXPORT polydual-targets NAMESPACE polydual:: FILE polydual-targets.cmake
   DESTINATION ${POLYDUAL_CMAKE_DIR})
 install(EXPORT polydual-generate-targets NAMESPACE polydual:: FILE polydual-generate-targets.cmake

@@ -1,9 +1,9 @@
 // lbfgs_module::lbfgs_api() for the polydual command: loads polydual-lbfgs.so
-// with dlopen on first use (cli/module_loader.h says where it looks), so that
+// with dlopen on first use (core/module_loader.h says where it looks), so that
 // only `--optimize global` pays for Ceres' solver and its libraries.
 #include <mutex>
 
-#include "cli/module_loader.h"
+#include "core/module_loader.h"
 #include "lbfgs/lbfgs_module.h"
 
 namespace polydual::lbfgs_module {

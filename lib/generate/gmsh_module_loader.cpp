@@ -1,11 +1,11 @@
 // gmsh_module::gmsh_api() for the polydual command: loads polydual-gmsh.so
-// with dlopen on first use (cli/module_loader.h says where it looks), so that
+// with dlopen on first use (core/module_loader.h says where it looks), so that
 // only `generate` and `demo` pay for Gmsh and OpenCASCADE (and the other
 // commands run where libgmsh is absent). Gmsh keeps global state until exit:
 // the module is never unloaded.
 #include <mutex>
 
-#include "cli/module_loader.h"
+#include "core/module_loader.h"
 #include "generate/gmsh_module.h"
 
 namespace polydual::gmsh_module {

@@ -36,7 +36,7 @@ struct Options {
 };
 
 struct LbfgsApi {
-  int abi_version;  // first member (cli/module_loader.h reads it)
+  int abi_version;  // first member (core/module_loader.h reads it)
   // Minimises from x (n values, overwritten by the result) by L-BFGS with a
   // line search, at most options.max_iterations iterations; x is the best
   // point found whatever the solver's termination. Returns false with a
