@@ -80,7 +80,7 @@ EdgeStop edge_stop(const ClassifiedTetMesh& m, const CutTopology& ct, EdgeId e, 
   std::size_t p = 0, ca = 0, cb = 0;
   for (std::size_t k = 0; k < nk; ++k) {
     const bool mf = m.on_model_face(tris[k]);
-    const bool in_a = mf || ct.cut_by(tris[k], a), in_b = mf || ct.cut_by(tris[k], b);
+    const bool in_a = mf || ct.cut_by(m, tris[k], a), in_b = mf || ct.cut_by(m, tris[k], b);
     p += in_a || in_b;
     ca += in_a;
     cb += in_b;

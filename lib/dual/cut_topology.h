@@ -37,7 +37,15 @@ struct CutTopology {
   bool is_cut(TriId f) const { return active && tri_mask[f.idx] != 0; }
   bool stop(EdgeId e) const { return active && (edge_bits[e.idx] & kStop) != 0; }
   bool ring_cut(EdgeId e) const { return active && (edge_bits[e.idx] & kRingCut) != 0; }
-  bool cut_by(TriId f, VertexId v) const { return active && cuts->cuts(v, f); }
+  // Whether v (a vertex of f) cuts f, from tri_mask (no search of v's cut
+  // list; cut_topology() fills the mask before any use).
+  bool cut_by(const ClassifiedTetMesh& m, TriId f, VertexId v) const {
+    if (!active) return false;
+    const unsigned mask = tri_mask[f.idx];
+    if (mask == 0) return false;
+    const auto t = m.triangle(f);
+    return (mask & (unsigned(t[0] == v) | unsigned(t[1] == v) << 1 | unsigned(t[2] == v) << 2)) != 0;
+  }
 };
 
 // Whether the point made from primal entity o (PolyMesh::point_origin) is
@@ -57,7 +65,7 @@ CutTopology cut_topology(const ClassifiedTetMesh& mesh, const VertexCuts* cuts);
 // A triangle of edge e = (a, b)'s ring cuts the ring (a position: the fan
 // faces of e end there) iff it is on a model face or in cut(a) or cut(b).
 inline bool ring_position(const ClassifiedTetMesh& m, const CutTopology& ct, TriId f, VertexId a, VertexId b) {
-  return m.on_model_face(f) || ct.cut_by(f, a) || ct.cut_by(f, b);
+  return m.on_model_face(f) || ct.cut_by(m, f, a) || ct.cut_by(m, f, b);
 }
 
 }  // namespace polydual
