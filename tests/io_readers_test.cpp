@@ -100,6 +100,51 @@ TEST(IoReaders, Msh22AsciiPhysicalElseElementary) {
   expect_classifies(s);
 }
 
+// Node tags far apart, above the header's maximum and beyond 32 bits (the
+// readers keep small tags in an array, the others in a hash map): the nodes
+// are still found in file order, and a tag given twice is still an error,
+// whichever side of the array's end it is on.
+std::string msh41_one_tet(const std::array<std::string, 4>& tags, const std::string& element_nodes) {
+  std::string f = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 4 3 5\n3 1 0 4\n";
+  for (const std::string& t : tags) f += t + "\n";
+  f += "0 0 0\n1 0 0\n0 1 0\n0 0 1\n$EndNodes\n$Elements\n1 1 1 1\n3 1 4 1\n1 " + element_nodes +
+       "\n$EndElements\n";
+  return f;
+}
+
+TEST(IoReaders, MshSparseAndHugeNodeTags) {
+  const TetSoup s = read_msh(msh41_one_tet({"7", "1000000000", "3", "1099511627776"}, "1000000000 3 1099511627776 7"), "t.msh");
+  ASSERT_EQ(s.tets.size(), 1u);
+  EXPECT_EQ(s.tets[0], (std::array<std::uint32_t, 4>{1, 2, 3, 0}));
+  EXPECT_EQ(s.points[1].x, 1.0);
+  EXPECT_EQ(s.points[3].z, 1.0);
+  const TetSoup t = read_msh(
+      "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n5000000000 0 0 0\n2 1 0 0\n-4 0 1 0\n9 0 0 1\n$EndNodes\n"
+      "$Elements\n1\n1 4 2 1 1 9 -4 2 5000000000\n$EndElements\n",
+      "t.msh");
+  ASSERT_EQ(t.tets.size(), 1u);
+  EXPECT_EQ(t.tets[0], (std::array<std::uint32_t, 4>{3, 2, 1, 0}));
+  auto error = [](const std::string& bytes) {
+    try {
+      read_msh(bytes, "t.msh");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  // The header's maximum tag is 5: 3 and 5 are held in the array, 7 and up in the map.
+  EXPECT_THAT(error(msh41_one_tet({"3", "1000000000", "7", "3"}, "7 3 1000000000 3")),
+              testing::HasSubstr("node tag 3 defined twice"));
+  EXPECT_THAT(error(msh41_one_tet({"7", "1000000000", "3", "7"}, "7 3 1000000000 7")),
+              testing::HasSubstr("node tag 7 defined twice"));
+  EXPECT_THAT(error(msh41_one_tet({"7", "1099511627776", "3", "1099511627776"}, "7 3 1099511627776 7")),
+              testing::HasSubstr("node tag 1099511627776 defined twice"));
+  EXPECT_THAT(error(msh41_one_tet({"7", "1000000000", "3", "4"}, "7 3 1000000000 5")),
+              testing::HasSubstr("element 1: node 5 is not defined in $Nodes"));
+  EXPECT_THAT(error(msh41_one_tet({"7", "1000000000", "3", "4"}, "7 3 1000000000 99999999999")),
+              testing::HasSubstr("element 1: node 99999999999 is not defined in $Nodes"));
+}
+
 TEST(IoReaders, Msh22Binary) {
   const TetSoup s = read_msh_file(kData + "/cube5_v2_bin.msh");
   expect_cube(s);

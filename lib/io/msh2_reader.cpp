@@ -17,13 +17,11 @@
 namespace polydual::io::msh {
 namespace {
 
-using NodeIndex = std::unordered_map<std::int64_t, std::uint32_t>;
-
 struct Reader {
   TextCursor& cur;
   bool binary;
   TetSoup soup;
-  NodeIndex node_index;
+  NodeTags node_index;  // msh 2.2 ids as unsigned (a negative id is a huge tag)
   ElementOrigins origins;  // the elementary tag of every triangle, edge, corner
   std::map<std::pair<int, std::int32_t>, std::string> names;
   std::map<std::pair<int, std::int32_t>, std::set<std::int32_t>> physicals;  // (dim, tag) -> soup tags
@@ -36,7 +34,7 @@ struct Reader {
     cur.check_count(n, binary ? 4 + 3 * 8 : 8, "node");
     if (binary) cur.skip_end_of_line();
     soup.points.reserve(n);
-    node_index.reserve(n);
+    node_index.reserve(std::uint64_t(n), std::numeric_limits<std::uint64_t>::max());
     for (std::int64_t i = 0; i < n; ++i) {
       std::int64_t id;
       Point3 p;
@@ -47,7 +45,7 @@ struct Reader {
         id = cur.integer("node number");
         for (int k = 0; k < 3; ++k) p[k] = cur.real("coordinate");
       }
-      if (!node_index.emplace(id, static_cast<std::uint32_t>(soup.points.size())).second)
+      if (node_index.insert(std::uint64_t(id), static_cast<std::uint32_t>(soup.points.size())) != NodeTags::kNone)
         fail("node " + std::to_string(id) + " defined twice");
       soup.points.push_back(p);
     }
@@ -55,10 +53,10 @@ struct Reader {
   }
 
   std::uint32_t node(std::int64_t element, std::int64_t id) const {
-    auto it = node_index.find(id);
-    if (it == node_index.end())
+    const std::uint32_t at = node_index.find(std::uint64_t(id));
+    if (at == NodeTags::kNone)
       fail("element " + std::to_string(element) + ": node " + std::to_string(id) + " is not defined in $Nodes");
-    return it->second;
+    return at;
   }
 
   // tags[0] is the physical tag, tags[1] the elementary one (Gmsh 2.2 manual).

@@ -47,7 +47,7 @@ struct Reader {
   TextCursor& cur;
   bool binary;
   TetSoup soup;
-  std::unordered_map<std::uint64_t, std::uint32_t> node_index;
+  NodeTags node_index;
   std::array<std::map<std::int32_t, Entity>, 4> entities;
   bool have_entities = false;
   std::array<std::unordered_map<std::int32_t, Piece>, 4> pieces;
@@ -179,10 +179,10 @@ struct Reader {
     for (std::int64_t i = 0; i < n; ++i) {
       const std::uint64_t t = tag(binary ? "the $Nodes block (expected a node tag)" : "node tag");
       const std::uint32_t at = static_cast<std::uint32_t>(soup.points.size() + i);
-      const auto [it, fresh] = node_index.emplace(t, at);
-      if (fresh) continue;
+      const std::uint32_t had = node_index.insert(t, at);
+      if (had == NodeTags::kNone) continue;
       if (!partitioned) fail("node tag " + std::to_string(t) + " defined twice");
-      repeats.emplace_back(at, it->second);
+      repeats.emplace_back(at, had);
     }
   }
 
@@ -191,11 +191,11 @@ struct Reader {
     const std::int64_t nblocks = count("the number of node entity blocks");
     const std::int64_t nnodes = count("the number of nodes");
     count("the minimum node tag", std::numeric_limits<std::int64_t>::max());
-    count("the maximum node tag", std::numeric_limits<std::int64_t>::max());
+    const std::int64_t max_tag = count("the maximum node tag", std::numeric_limits<std::int64_t>::max());
     cur.check_count(nblocks, binary ? 20 : 8, "node entity block");
     cur.check_count(nnodes, binary ? 32 : 8, "node");
     soup.points.reserve(nnodes);
-    node_index.reserve(nnodes);
+    node_index.reserve(std::uint64_t(nnodes), std::uint64_t(max_tag));
     std::vector<std::pair<std::uint32_t, std::uint32_t>> repeats;  // (this copy, first copy)
     for (std::int64_t b = 0; b < nblocks; ++b) {
       int_field("entity dimension", 0, 3);
@@ -226,10 +226,10 @@ struct Reader {
   }
 
   std::uint32_t node(std::uint64_t element, std::uint64_t t) const {
-    auto it = node_index.find(t);
-    if (it == node_index.end())
+    const std::uint32_t at = node_index.find(t);
+    if (at == NodeTags::kNone)
       fail("element " + std::to_string(element) + ": node " + std::to_string(t) + " is not defined in $Nodes");
-    return it->second;
+    return at;
   }
 
   // The model entity of block entity (dim, tag) and the tag its elements get:

@@ -1,14 +1,54 @@
 // Pieces shared by the msh 2.2 and msh 4.1 readers (not a public header).
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <unordered_map>
+#include <vector>
 
 #include "core/error.h"
 #include "io/text_cursor.h"
 #include "mesh/tet_soup.h"
 
 namespace polydual::io::msh {
+
+// Node tag -> the node's index in file order. Gmsh numbers nodes 1..N (or
+// nearly), so tags below a bound are kept in a plain array (one load per
+// lookup; the elements' ~4 lookups per tet dominated the reading of large
+// files with a hash map); any other tag (sparse numbering, a negative msh 2.2
+// id seen as a huge unsigned) goes to a hash map. Same answers either way.
+class NodeTags {
+ public:
+  static constexpr std::uint32_t kNone = 0xffffffffu;
+  // Room for `count` nodes, tags below min(max_tag, 4 * count + 1024) + 1
+  // held densely (at most ~16 bytes per node).
+  void reserve(std::uint64_t count, std::uint64_t max_tag) {
+    const std::uint64_t bound = std::min<std::uint64_t>(max_tag, 4 * count + 1024);
+    dense_.assign(bound + 1, kNone);
+  }
+  // Records tag -> at; returns kNone when the tag is new, else the index it
+  // already had (which is kept).
+  std::uint32_t insert(std::uint64_t tag, std::uint32_t at) {
+    if (tag < dense_.size()) {
+      const std::uint32_t had = dense_[tag];
+      if (had == kNone) dense_[tag] = at;
+      return had;
+    }
+    const auto [it, fresh] = sparse_.emplace(tag, at);
+    return fresh ? kNone : it->second;
+  }
+  // The index of tag, or kNone.
+  std::uint32_t find(std::uint64_t tag) const {
+    if (tag < dense_.size()) return dense_[tag];
+    const auto it = sparse_.find(tag);
+    return it == sparse_.end() ? kNone : it->second;
+  }
+
+ private:
+  std::vector<std::uint32_t> dense_;
+  std::unordered_map<std::uint64_t, std::uint32_t> sparse_;
+};
 
 // What the reader does with one Gmsh element type.
 enum class Use { tet, triangle, line, point, ignore };
