@@ -16,6 +16,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <vector>
+
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 using ::testing::Not;
@@ -348,6 +350,50 @@ TEST(CliOptions, DemoOptions) {
   EXPECT_EQ(jq(summary, "all(200 < x['tets'] < 800 for x in d)"), "True");
   EXPECT_THAT(r.out, HasSubstr("fracture"));
   EXPECT_EQ(run("demo --out " + d.string() + " --domains klein").code, 2);
+}
+
+TEST(CliOptions, DemoWritesOnlyIntoItsOwnOrAnEmptyDirectory) {
+  const fs::path d = scratch_root() / "demo_user";
+  fs::create_directories(d);
+  std::ofstream(d / "summary.json") << "the user's own";
+  std::ofstream(d / "notes.txt") << "keep me";
+  const std::string args = " --tets 300 --domains cube --optimize none";
+  CmdResult r = run("demo --out " + d.string() + args);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_THAT(r.err, HasSubstr("is not from an earlier demo"));
+  EXPECT_EQ(slurp(d / "summary.json"), "the user's own");
+  EXPECT_FALSE(fs::exists(d / "cube.vtu"));
+  // A demo's own directory is rerun without a word; a stranger in it is refused.
+  const fs::path own = scratch_root() / "demo_own";
+  ASSERT_EQ(run("demo --out " + own.string() + args).code, 0);
+  EXPECT_TRUE(fs::exists(own / ".polydual-demo"));
+  EXPECT_EQ(run("demo --out " + own.string() + args).code, 0);
+  std::ofstream(own / "notes.txt") << "keep me";
+  r = run("demo --out " + own.string() + args);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_THAT(r.err, HasSubstr("'notes.txt', which a demo does not write"));
+  // --force writes the demo's names beside the user's files.
+  r = run("demo --out " + d.string() + args + " --force");
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(slurp(d / "notes.txt"), "keep me");
+  EXPECT_TRUE(fs::exists(d / "cube.vtu"));
+  // A missing parent is refused, not created.
+  r = run("demo --out " + (scratch_root() / "nope" / "deeper").string() + args);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_THAT(r.err, HasSubstr("does not exist"));
+  EXPECT_FALSE(fs::exists(scratch_root() / "nope"));
+}
+
+TEST(CliOptions, AnOptionGivenTwiceIsAUsageError) {
+  const std::string in = meshes().msh.string();
+  const fs::path a = scratch_root() / "twice_a.vtu", b = scratch_root() / "twice_b.vtu";
+  for (const std::string& extra : std::vector<std::string>{"-o " + b.string(), "--optimize local", "--threads 2"}) {
+    CmdResult r = run("convert " + in + " -o " + a.string() + " --optimize none --threads 1 " + extra);
+    EXPECT_EQ(r.code, 2) << extra;
+    EXPECT_THAT(r.err, HasSubstr("is given twice; give it once")) << extra << r.err;
+  }
+  EXPECT_FALSE(fs::exists(a));
+  EXPECT_FALSE(fs::exists(b));
 }
 
 TEST(CliOptions, ProgressOnStderrUnlessQuiet) {

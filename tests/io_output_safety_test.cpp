@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include <array>
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -74,6 +75,7 @@ std::map<std::string, std::string> snapshot(const fs::path& dir) {
     const std::string rel = fs::relative(it->path(), dir).string();
     if (it->is_symlink()) out[rel] = "-> " + fs::read_symlink(it->path()).string();
     else if (it->is_directory()) out[rel] = "<dir>";
+    else if (!it->is_regular_file()) out[rel] = "<special>";  // never opened: a FIFO would block
     else out[rel] = slurp(it->path());
   }
   return out;
@@ -268,11 +270,38 @@ TEST(AtomicFile, KeepsPermissionBitsAndSymbolicLinks) {
   ASSERT_EQ(::stat((d / "fresh.vtu").c_str(), &st), 0);
   EXPECT_EQ(st.st_mode & 07777, 0644u);
 
-  // Through a symbolic link: the link stays, the file it names is replaced.
-  fs::create_symlink("out.vtu", d / "link.vtu");
-  write_file_atomically(d / "link.vtu", [](std::ostream& os) { os << "via link"; });
-  EXPECT_TRUE(fs::is_symlink(fs::symlink_status(d / "link.vtu")));
-  EXPECT_EQ(slurp(f), "via link");
+}
+
+TEST(AtomicFile, NeverWritesThroughALinkOrIntoASpecialFile) {
+  const fs::path d = scratch("atomic_links");
+  put(d / "victim.txt", "the user's file");
+  fs::create_symlink("victim.txt", d / "link.vtu");
+  fs::create_symlink("/etc/hostname", d / "system.vtu");
+  fs::create_symlink("nowhere", d / "dangling.vtu");
+  ASSERT_EQ(::mkfifo((d / "pipe.vtu").c_str(), 0644), 0);
+  const auto before = snapshot(d);
+  const std::pair<const char*, const char*> cases[] = {{"link.vtu", "is a symbolic link (to 'victim.txt')"},
+                                                       {"system.vtu", "is a symbolic link"},
+                                                       {"dangling.vtu", "is a symbolic link (to 'nowhere')"},
+                                                       {"pipe.vtu", "is a FIFO"}};
+  for (const auto& [name, why] : cases) {
+    try {
+      write_file_atomically(d / name, [](std::ostream& os) { os << "output"; });
+      ADD_FAILURE() << name << " was written";
+    } catch (const WriteError& e) {
+      EXPECT_THAT(e.what(), HasSubstr(why)) << e.what();
+    }
+  }
+  EXPECT_EQ(snapshot(d), before);  // the links, their targets and the FIFO as they were
+  EXPECT_THAT(temporaries(d), ::testing::IsEmpty());
+  for (const char* dev : {"/dev/null", "/dev/full"})
+    EXPECT_THROW(write_file_atomically(dev, [](std::ostream& os) { os << "x"; }), WriteError) << dev;
+  // A link as a directory output: refused, its target untouched.
+  fs::create_directories(d / "real");
+  fs::create_symlink("real", d / "dirlink");
+  EXPECT_THROW(write_directory_atomically(d / "dirlink", [](const fs::path& tmp) { put(tmp / "x", "x"); }),
+               WriteError);
+  EXPECT_TRUE(fs::is_empty(d / "real"));
 }
 
 TEST(AtomicFile, InterruptStopsTheWriteBetweenChunksAndKeepsTheOldFile) {
@@ -326,12 +355,12 @@ TEST(AtomicFile, WriteErrorsCarryThePathAndTheSystemReason) {
     EXPECT_THAT(e.what(), HasSubstr("/proc/polydual_out.vtu: cannot open for writing: "));
     EXPECT_TRUE(e.reason()) << e.what();
   }
-  // A full device: ENOSPC at the first chunk (written in place, not renamed over).
+  // A device is not written at all (no in-place writes: not atomic).
   try {
     write_file_atomically("/dev/full", [](std::ostream& os) { os << std::string(3 << 20, 'x'); });
     ADD_FAILURE() << "no error";
   } catch (const WriteError& e) {
-    EXPECT_THAT(e.what(), HasSubstr("/dev/full: write failed: No space left on device"));
+    EXPECT_THAT(e.what(), HasSubstr("/dev/full: is a character device; polydual writes only regular files"));
   }
   EXPECT_TRUE(fs::is_character_file("/dev/full"));
   // The file system full in the middle of a file (a file size limit: EFBIG).
@@ -422,7 +451,9 @@ void expect_refused(const std::vector<std::string>& in, const fs::path& out, Out
     check_output_target(in, out.string(), kind, force, ext);
     ADD_FAILURE() << out << " was accepted";
   } catch (const UsageError& e) {
-    EXPECT_THAT(e.what(), HasSubstr(out.string())) << e.what();
+    // The path is named in full, or its first 100 characters when longer.
+    const std::string shown = out.string();
+    EXPECT_THAT(e.what(), HasSubstr(shown.size() > 100 ? shown.substr(0, 100) + "..." : shown)) << e.what();
     EXPECT_THAT(e.what(), HasSubstr(why)) << e.what();
   }
 }
@@ -462,12 +493,73 @@ TEST(OutputGuard, FilesAreReplacedOnlyByTheirOwnKind) {
   EXPECT_NO_THROW(check_output_target({}, (d / "mesh.msh").string(), OutputKind::File, false, ""));
   for (bool force : {false, true}) {
     expect_refused({}, d / "dir.vtu", OutputKind::File, force, "is a directory");
-    expect_refused({}, d / "old.vtu", OutputKind::FoamCase, force, "is not a directory");
+    expect_refused({}, d / "old.vtu", OutputKind::FoamCase, force, "exists and is a regular file, not a directory");
   }
-  expect_refused({}, d / "old.vtu" / "x.vtu", OutputKind::File, false, "is not a directory");
+  expect_refused({}, d / "old.vtu" / "x.vtu", OutputKind::File, false, "is a regular file, not a directory");
   fs::create_symlink(d / "nowhere", d / "dangling.vtu");
-  expect_refused({}, d / "dangling.vtu", OutputKind::File, false, "dangling");
-  EXPECT_NO_THROW(check_output_target({}, "/dev/null", OutputKind::File, false, ".vtu"));
+  expect_refused({}, d / "dangling.vtu", OutputKind::File, false, "is a symbolic link (to '");
+}
+
+TEST(OutputGuard, LinksAndSpecialFilesAreRefusedEvenWithForce) {
+  const fs::path d = scratch("guard_links");
+  put(d / "victim.txt", "the user's file");
+  fs::create_symlink("victim.txt", d / "link.vtu");
+  fs::create_directories(d / "realdir");
+  fs::create_symlink("realdir", d / "caselink");
+  ASSERT_EQ(::mkfifo((d / "pipe.vtu").c_str(), 0644), 0);
+  const auto before = snapshot(d);
+  for (bool force : {false, true}) {
+    expect_refused({}, d / "link.vtu", OutputKind::File, force, "is a symbolic link (to 'victim.txt'); polydual never writes through a link");
+    expect_refused({}, d / "caselink", OutputKind::FoamCase, force, "is a symbolic link (to 'realdir')");
+    expect_refused({}, d / "pipe.vtu", OutputKind::File, force, "is a FIFO (named pipe); polydual writes only regular files");
+  }
+  for (const char* dev : {"/dev/null", "/dev/zero"}) {
+    expect_refused({}, dev, OutputKind::File, true, "is a character device", "");
+    expect_refused({}, dev, OutputKind::FoamCase, true, "is a character device, not a directory");
+  }
+  EXPECT_EQ(snapshot(d), before);
+}
+
+TEST(OutputGuard, ACaseWhoseOwnDirectoriesAreLinksIsRefused) {
+  const fs::path d = scratch("guard_case_links");
+  fs::create_directories(d / "elsewhere" / "polyMesh");
+  put(d / "elsewhere" / "polyMesh" / "points", "the user's points");
+  // OUT/constant a link to a directory outside the case.
+  fs::create_directories(d / "a");
+  fs::create_symlink(d / "elsewhere", d / "a" / "constant");
+  // OUT/constant/polyMesh a link.
+  fs::create_directories(d / "b" / "constant");
+  fs::create_symlink(d / "elsewhere" / "polyMesh", d / "b" / "constant" / "polyMesh");
+  // OUT/system a link, even to a directory inside the case.
+  fs::create_directories(d / "c" / "mine");
+  fs::create_symlink("mine", d / "c" / "system");
+  const auto before = snapshot(d);
+  for (bool force : {false, true}) {
+    expect_refused({}, d / "a", OutputKind::FoamCase, force, "has a 'constant' that is a symbolic link");
+    expect_refused({}, d / "b", OutputKind::FoamCase, force, "has a 'constant/polyMesh' that is a symbolic link");
+    expect_refused({}, d / "c", OutputKind::FoamCase, force, "has a 'system' that is a symbolic link");
+    FoamOptions o;
+    o.force = force;
+    EXPECT_THROW(write_foam(hex_block(1, 1), (d / "a").string(), o), UsageError);
+  }
+  EXPECT_EQ(snapshot(d), before);
+}
+
+TEST(OutputGuard, AMissingParentIsRefusedAlikeForFilesAndCases) {
+  const fs::path d = scratch("guard_parent");
+  put(d / "plain", "a file");
+  for (const auto kind : {OutputKind::File, OutputKind::FoamCase}) {
+    const fs::path deep = d / "nope" / "deeper" / (kind == OutputKind::File ? "out.vtu" : "case");
+    expect_refused({}, deep, kind, true, "cannot be created: the directory '" + (d / "nope" / "deeper").string() +
+                                             "' does not exist");
+    expect_refused({}, d / "plain" / "x", kind, true, "is a regular file, not a directory");
+  }
+  EXPECT_FALSE(fs::exists(d / "nope"));
+  // A name component too long for the file system (with the temporary's suffix).
+  const std::string long_name(250, 'a');
+  expect_refused({}, d / long_name, OutputKind::FoamCase, false, "has a name component of 250 bytes");
+  expect_refused({}, d / (long_name + ".vtu"), OutputKind::File, false, "the file system allows 255");
+  EXPECT_NO_THROW(check_output_target({}, (d / std::string(200, 'b')).string(), OutputKind::FoamCase, false));
 }
 
 TEST(OutputGuard, CaseDirectories) {
@@ -568,12 +660,12 @@ TEST(FoamSafety, AFailureMidWriteKeepsThePreviousCaseAndNoTemporary) {
   }
   EXPECT_EQ(snapshot(d.parent_path()), before);
   // The same failure on a fresh case leaves nothing at all.
-  const fs::path fresh = d.parent_path() / "deep" / "fresh";
+  const fs::path fresh = d.parent_path() / "fresh";
   {
     FileSizeLimit limit(8000);
     EXPECT_THROW(write_foam(hex_block(6, 1), fresh.string()), WriteError);
   }
-  EXPECT_FALSE(fs::exists(d.parent_path() / "deep"));
+  EXPECT_FALSE(fs::exists(fresh));
   EXPECT_EQ(snapshot(d.parent_path()), before);
 }
 
@@ -613,6 +705,147 @@ TEST(CommandSafety, ConvertRefusesToReplaceItsInputOrAUsersDirectory) {
     EXPECT_EQ(r.code, 0) << r.out;
   }
   EXPECT_THAT(temporaries(d), ::testing::IsEmpty());
+}
+
+
+// ---------------------------------------------------------------------------
+// Every interrupt ends the run: the watchdog (core/interrupt.h)
+
+namespace watchdog {
+
+double now() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+// Waits up to `limit` seconds for `pid`; kills it and returns -1 if it is
+// still running then (the hang the watchdog must prevent).
+int wait_for(pid_t pid, double limit) {
+  const double t0 = now();
+  for (;;) {
+    int status = 0;
+    if (::waitpid(pid, &status, WNOHANG) == pid) return status;
+    if (now() - t0 > limit) {
+      ::kill(pid, SIGKILL);
+      ::waitpid(pid, &status, 0);
+      return -1;
+    }
+    ::usleep(10000);
+  }
+}
+
+bool wait_until_exists(const fs::path& p, double limit) {
+  for (const double t0 = now(); now() - t0 < limit; ::usleep(10000))
+    if (fs::exists(p)) return true;
+  return false;
+}
+
+// A child that registers the temporary `tmp`, creates it, then runs `stall`
+// (which never polls the interrupt flag) under a watchdog of `grace` seconds.
+template <class Stall>
+pid_t child(const fs::path& tmp, double grace, Stall stall) {
+  const pid_t pid = ::fork();
+  if (pid != 0) return pid;
+  start_interrupt_watchdog(grace);
+  ScopedTemporary registered(tmp, ScopedTemporary::Kind::File);
+  put(tmp, "half written");
+  stall();
+  ::_exit(0);  // not reached: the watchdog ends the process
+}
+
+}  // namespace watchdog
+
+TEST(InterruptWatchdog, ASignalWhileBlockedInASystemCallEndsTheProcessAndRemovesTheTemporary) {
+  const fs::path d = scratch("watchdog_blocked");
+  const fs::path tmp = d / "out.vtu.tmp.1";
+  int fds[2];
+  ASSERT_EQ(::pipe(fds), 0);
+  const pid_t pid = watchdog::child(tmp, 0.3, [&] {
+    char c;
+    for (;;) [[maybe_unused]] const ssize_t n = ::read(fds[0], &c, 1);  // blocks: nothing is ever written
+  });
+  ASSERT_TRUE(watchdog::wait_until_exists(tmp, 10));
+  const double t0 = watchdog::now();
+  ::kill(pid, SIGTERM);
+  const int status = watchdog::wait_for(pid, 10);
+  const double took = watchdog::now() - t0;
+  ::close(fds[0]);
+  ::close(fds[1]);
+  ASSERT_NE(status, -1) << "still blocked 10 s after SIGTERM";
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 128 + SIGTERM);
+  EXPECT_LT(took, 3.0);
+  EXPECT_FALSE(fs::exists(tmp));
+}
+
+TEST(InterruptWatchdog, ASecondSignalEndsTheProcessAtOnce) {
+  const fs::path d = scratch("watchdog_second");
+  const fs::path tmp = d / "case.tmp.1";
+  const pid_t pid = watchdog::child(tmp, 600, [] {
+    volatile unsigned long i = 0;
+    for (;;) i = i + 1;  // a computation that never polls
+  });
+  ASSERT_TRUE(watchdog::wait_until_exists(tmp, 10));
+  ::kill(pid, SIGINT);
+  ::usleep(200000);
+  EXPECT_EQ(::waitpid(pid, nullptr, WNOHANG), 0) << "the first signal alone must leave the grace to the run";
+  const double t0 = watchdog::now();
+  ::kill(pid, SIGINT);
+  const int status = watchdog::wait_for(pid, 10);
+  ASSERT_NE(status, -1) << "a second SIGINT did not end the process";
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 128 + SIGINT);  // the first signal's status
+  EXPECT_LT(watchdog::now() - t0, 2.0);
+  EXPECT_FALSE(fs::exists(tmp));
+}
+
+// `generate` while Gmsh meshes (no poll point inside Gmsh): the watchdog ends
+// it; no file is written after the signal.
+TEST(CommandSafety, GenerateIsInterruptedWhileGmshMeshes) {
+  const fs::path d = scratch("generate_interrupt");
+  const fs::path out = d / "g.msh";
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    ::signal(SIGINT, SIG_DFL);
+    ::execl(POLYDUAL_BINARY, "polydual", "generate", "twomat", "--tets", "400000", "-o", out.c_str(), "--quiet",
+            static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  ::usleep(1500000);  // Gmsh is meshing (400k tets take several seconds)
+  const double t0 = watchdog::now();
+  ::kill(pid, SIGTERM);
+  const int status = watchdog::wait_for(pid, 30);
+  ASSERT_NE(status, -1) << "generate outlived its SIGTERM by 30 s";
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 128 + SIGTERM);
+  EXPECT_LT(watchdog::now() - t0, 5.0);
+  ::usleep(500000);
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_THAT(temporaries(d), ::testing::IsEmpty());
+}
+
+TEST(CommandSafety, LinksFifosAndDevicesAsOutputAreRefusedBeforeAnyWork) {
+  const fs::path d = scratch("command_links");
+  const fs::path in = d / "in.msh";
+  fs::copy_file(fs::path(POLYDUAL_TEST_DATA) / "cube5.msh", in);
+  put(d / "victim.txt", "the user's file");
+  fs::create_symlink("victim.txt", d / "out.vtu");
+  fs::create_directories(d / "real");
+  fs::create_symlink("real", d / "caselink");
+  ASSERT_EQ(::mkfifo((d / "pipe.vtu").c_str(), 0644), 0);
+  const auto before = snapshot(d);
+  const std::pair<std::string, std::string> cases[] = {
+      {(d / "out.vtu").string(), "is a symbolic link (to 'victim.txt')"},
+      {(d / "caselink").string(), "is a symbolic link (to 'real')"},
+      {(d / "pipe.vtu").string(), "is a FIFO (named pipe)"},
+      {"/dev/null", "is a character device"}};
+  for (const auto& [out, why] : cases) {
+    const double t0 = watchdog::now();
+    const CmdResult r = run("convert " + in.string() + " -o " + out + " --force");
+    EXPECT_EQ(r.code, 2) << r.out;
+    EXPECT_THAT(r.out, HasSubstr(why));
+    EXPECT_LT(watchdog::now() - t0, 5.0) << out;
+  }
+  EXPECT_EQ(snapshot(d), before);
 }
 
 }  // namespace

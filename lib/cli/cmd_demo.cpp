@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/stopwatch.h"
 #include "generate/domains.h"
+#include "io/output_guard.h"
 #include "io/vtu_poly_reader.h"
 #include "pipeline/convert.h"
 #include "pipeline/summary.h"
@@ -22,7 +23,7 @@ const CommandSpec kDemo{
     "DIR/<domain>.msh, DIR/<domain>.vtu, DIR/<domain>_case/ (OpenFOAM) and\n"
     "DIR/summary.json, re-checks every written VTU and prints a summary.",
     0, 0,
-    {"--out", "--tets=20000", "--domains", "--optimize", "--threads", "--quiet"}};
+    {"--out", "--tets=20000", "--domains", "--optimize", "--force", "--threads", "--quiet"}};
 
 namespace {
 
@@ -77,13 +78,56 @@ void print_remaining_invalid(const std::string& domain, const Json& j) {
               val(j, "slit_cells").c_str());
 }
 
+// The names a demo writes into its directory, and the file that marks a
+// directory as a demo's: a rerun replaces what an earlier demo wrote, and
+// nothing else.
+constexpr const char* kMarker = ".polydual-demo";
+bool demo_name(const std::string& name) {
+  if (name == kMarker || name == "summary.json") return true;
+  for (const char* ext : {".msh", ".vtu", "_case"}) {
+    const std::string e = ext;
+    if (name.size() > e.size() && name.compare(name.size() - e.size(), e.size(), e) == 0) {
+      try {
+        parse_domain(name.substr(0, name.size() - e.size()));
+        return true;
+      } catch (const UsageError&) {
+      }
+    }
+  }
+  return false;
+}
+
+// The output directory must not exist (its parent must), be empty, or be an
+// earlier demo's (the marker, and only names a demo writes); another one is
+// refused unless --force, which still writes only the demo's names.
+void prepare_out_dir(const std::filesystem::path& dir, bool force) {
+  namespace fs = std::filesystem;
+  const std::string shown = dir.string();
+  if (!check_output_directory(shown)) {  // the shared rules: no link, no file, an existing parent
+    fs::create_directory(dir);
+  } else if (!force && !fs::is_empty(dir)) {
+    const bool marked = fs::exists(fs::symlink_status(dir / kMarker));
+    for (const fs::directory_entry& e : fs::directory_iterator(dir)) {
+      const std::string name = e.path().filename().string();
+      if (!marked || !demo_name(name))
+        throw UsageError("output directory '" + shown + "' holds '" + name + "', which " +
+                         (marked ? "a demo does not write" : "is not from an earlier demo (no " + std::string(kMarker) +
+                                                                 ")") +
+                         "; choose an empty or new directory, or --force to write the demo's files beside it");
+    }
+  }
+  write_file_atomically(dir / kMarker, [](std::ostream& os) {
+    os << "written by polydual demo: a rerun replaces the demo's files here\n";
+  });
+}
+
 }  // namespace
 
 int cmd_demo(const Settings& s) {
   const std::filesystem::path dir = s.out_dir;
   const std::vector<Domain> domains = parse_domains(s.domains);
   s.params.validate();
-  std::filesystem::create_directories(dir);
+  prepare_out_dir(dir, s.write.foam.force);
   Json all = Json::array();
   std::printf("%-9s %8s %8s %9s %8s %8s %7s %6s %8s\n", "domain", "tets", "cells", "faces", "invalid0",
               "invalid", "closed", "check", "seconds");

@@ -32,8 +32,14 @@ void usage(std::FILE* f) {
 }
 }  // namespace
 
+// After Ctrl-C or SIGTERM a run stops at its next poll point (between output
+// chunks, sweeps, rounds) and says so; one that does not poll within this
+// time (Gmsh meshing, a blocked system call) is ended by the watchdog, its
+// temporaries removed, with the same exit status.
+constexpr double kInterruptGraceSeconds = 1.0;
+
 int main(int argc, char** argv) {
-  install_interrupt_handlers();
+  start_interrupt_watchdog(kInterruptGraceSeconds);
   if (argc < 2) { usage(stderr); return 2; }
   const std::string name = argv[1];
   if (name == "-h" || name == "--help" || name == "help") { usage(stdout); return 0; }

@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <set>
 #include <sstream>
 
 #include "generate/domains.h"
@@ -28,7 +29,8 @@ const std::vector<OptionDef> kTable = {
      "output format (default: from OUT: *.vtu -> vtu, a name without extension -> OpenFOAM case)", nullptr,
      [](Settings& s, const std::string& v) { s.format = v; }},
     {"--force", K::Flag, "", kNoRange, kNoRange,
-     "write an OpenFOAM case into an existing directory that is not a case", nullptr,
+     "write into an existing directory that is not an OpenFOAM case (convert) or an earlier demo's (demo), "
+     "leaving its other files; replace a file whose extension is not the output's", nullptr,
      [](Settings& s, const std::string&) { s.write.foam.force = true; }},
     {"--vtu-encoding", K::Choice, "base64|raw|ascii", kNoRange, kNoRange,
      "VTU data arrays: base64 inline, raw appended binary (fastest to write and read), or ASCII text",
@@ -198,6 +200,7 @@ const OptionDef& option(const std::string& name) {
 
 Settings parse_command_line(const CommandSpec& spec, int argc, char** argv, Settings defaults) {
   Settings s = command_defaults(spec, std::move(defaults));
+  std::set<std::string> given;  // a repeated option is refused: "last wins" hides typos
   for (int i = 0; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "-h" || arg == "--help") { s.help = true; continue; }
@@ -206,6 +209,7 @@ Settings parse_command_line(const CommandSpec& spec, int argc, char** argv, Sett
     const std::string name = arg.substr(0, eq);
     const OptionDef* o = find_in(spec, name);
     if (!o) throw UsageFailure("unknown option '" + name + "' for '" + spec.name + "' (see polydual " + spec.name + " --help)");
+    if (!given.insert(o->name).second) throw UsageFailure("option " + name + " is given twice; give it once");
     std::string value;
     if (o->kind == K::Flag) {
       if (eq != std::string::npos) throw UsageFailure("option " + name + " takes no value");

@@ -11,6 +11,7 @@
 #include <streambuf>
 #include <vector>
 
+#include "core/file_type.h"
 #include "core/interrupt.h"
 
 namespace polydual {
@@ -137,21 +138,6 @@ fs::path create_temp_dir(const fs::path& target) {
   }
 }
 
-// A character device or FIFO target (/dev/null, /dev/full, a pipe) is written
-// in place: it cannot be replaced by a rename and holds no file to protect.
-void write_in_place(const fs::path& target, const fs::path& shown,
-                    const std::function<void(std::ostream&)>& write) {
-  const int fd = ::open(target.c_str(), O_WRONLY | O_CLOEXEC);
-  if (fd < 0) throw WriteError(shown, "cannot open for writing", last_error());
-  try {
-    stream_to(fd, shown, write);
-  } catch (...) {
-    ::close(fd);
-    throw;
-  }
-  if (::close(fd) != 0) throw WriteError(shown, "write failed", last_error());
-}
-
 // rename(2) variants of renameat2; false with errno = EINVAL/ENOSYS when the
 // file system does not support the flag.
 bool rename_with(const fs::path& from, const fs::path& to, unsigned flags) {
@@ -167,26 +153,34 @@ WriteError::WriteError(const fs::path& path, const std::string& what, std::error
 void write_file_atomically(const fs::path& path, const std::function<void(std::ostream&)>& write,
                            bool /*binary*/) {
   throw_if_interrupted();
-  std::error_code ec;
-  // An existing symbolic link stays; the file it names is replaced.
-  const fs::path target = fs::is_symlink(path, ec) && fs::exists(path, ec) ? fs::canonical(path) : path;
+  // The path itself, never what a link names: the temporary is created beside
+  // `path` and renamed onto `path`, so no file elsewhere can be replaced. An
+  // existing link or special file (FIFO, device, socket) is refused: opening a
+  // FIFO would block, and writing a device in place is not atomic. Should the
+  // path turn into a link after this check, the rename replaces the link.
   struct stat st;
-  const bool existed = ::stat(target.c_str(), &st) == 0;
-  if (existed && S_ISDIR(st.st_mode)) throw WriteError(path, "is a directory");
-  if (existed && (S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode))) return write_in_place(target, path, write);
-  if (existed && !S_ISREG(st.st_mode)) throw WriteError(path, "exists and is not a regular file");
-
+  const bool existed = ::lstat(path.c_str(), &st) == 0;
+  if (existed && !S_ISREG(st.st_mode)) {
+    const FileType type = file_type_of_mode(st.st_mode);
+    std::string what = std::string("is ") + describe_file_type(type);
+    if (type == FileType::Symlink) what += " (to '" + link_target(path) + "'); polydual never writes through a link";
+    else if (type != FileType::Directory) what += "; polydual writes only regular files";
+    throw WriteError(path, what);
+  }
   fs::path tmp;
-  int fd = create_temp_file(target, path, tmp);
+  int fd = create_temp_file(path, path, tmp);
+  ScopedTemporary registered(tmp, ScopedTemporary::Kind::File);
   try {
     if (existed && ::fchmod(fd, st.st_mode & 07777) != 0)
       throw WriteError(path, "cannot keep the permissions", last_error());
     stream_to(fd, path, write);
-    throw_if_interrupted();  // the last moment the old file can still be kept
     const int closed = ::close(fd);
     fd = -1;
     if (closed != 0) throw WriteError(path, "write failed", last_error());
-    if (!rename_with(tmp, target, 0)) throw WriteError(path, "cannot replace", last_error());
+    const auto commit = hold_off_watchdog();
+    throw_if_interrupted();  // the last moment the old file can still be kept
+    if (!rename_with(tmp, path, 0)) throw WriteError(path, "cannot replace", last_error());
+    registered.release();
   } catch (...) {
     if (fd >= 0) ::close(fd);
     ::unlink(tmp.c_str());
@@ -216,10 +210,14 @@ void write_directory_atomically(const fs::path& dir, const std::function<void(co
   std::error_code ec;
   const fs::file_status st = fs::symlink_status(dir, ec);
   const bool existed = fs::exists(st);
+  if (fs::is_symlink(st))
+    throw WriteError(dir, "is a symbolic link (to '" + link_target(dir) + "'); polydual never writes through a link");
   if (existed && !fs::is_directory(st)) throw WriteError(dir, "exists and is not a directory");
   const fs::path tmp = create_temp_dir(dir);
+  ScopedTemporary registered(tmp, ScopedTemporary::Kind::Tree);
   try {
     fill(tmp);
+    const auto commit = hold_off_watchdog();
     throw_if_interrupted();  // the last moment the old tree can still be kept
     if (!existed) {
       if (!rename_with(tmp, dir, RENAME_NOREPLACE) && !(unsupported(errno) && rename_with(tmp, dir, 0)))
@@ -265,8 +263,10 @@ bool write_directory_if_absent(const fs::path& dir, const std::function<void(con
   if (fs::exists(fs::symlink_status(dir, ec)) && !(fs::is_directory(fs::symlink_status(dir)) && fs::is_empty(dir, ec)))
     return false;
   const fs::path tmp = create_temp_dir(dir);
+  ScopedTemporary registered(tmp, ScopedTemporary::Kind::Tree);
   try {
     fill(tmp);
+    const auto commit = hold_off_watchdog();
     throw_if_interrupted();
     const bool placed = rename_if_absent(tmp, dir);
     if (!placed) fs::remove_all(tmp, ec);

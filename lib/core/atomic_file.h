@@ -27,8 +27,9 @@ class WriteError : public std::runtime_error {
 
 // Calls write(stream) on a temporary file `path`.tmp.PID and renames it over
 // `path` when write returns and every byte reached the file; an existing
-// `path` keeps its permission bits (a symbolic link `path` is kept and its
-// target replaced). The stream throws at the first failed write (WriteError
+// `path` keeps its permission bits. A `path` that is a symbolic link (to
+// anything), a directory, a FIFO, a device or a socket is refused
+// (WriteError): nothing but a regular file at `path` itself is ever replaced. The stream throws at the first failed write (WriteError
 // with the system's reason) and, between chunks of about 1 MiB, when the user
 // interrupted (Interrupted, see core/interrupt.h). On any exception (these, or
 // one thrown by `write`) the temporary is removed, `path` is left as it was,

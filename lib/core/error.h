@@ -30,4 +30,14 @@ class UsageError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Memory ran out in a named stage of the work ("dual", "optimize"): a
+// std::bad_alloc rethrown with where it happened and how much the process
+// held then, so the user knows what to shrink.
+class OutOfMemory : public std::runtime_error {
+ public:
+  OutOfMemory(const std::string& stage, double peak_rss_mb)
+      : std::runtime_error("out of memory in stage '" + stage + "' (peak resident memory " +
+                           std::to_string(long(peak_rss_mb)) + " MB)") {}
+};
+
 }  // namespace polydual

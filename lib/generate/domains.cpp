@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "generate/gmsh_module.h"
 #include "predicates/predicates.h"
 
@@ -122,9 +123,13 @@ TetSoup generate_domain(Domain d, std::size_t target_tets) {
 
 void write_domain_msh(Domain d, std::size_t target_tets, const std::string& path) {
   check_target(target_tets);
+  throw_if_interrupted();
   const gmsh_module::GmshApi& gmsh = gmsh_module::gmsh_api();
   // Gmsh picks the format from the extension, so the temporary keeps ".msh".
   const std::string tmp = path + ".tmp." + std::to_string(::getpid()) + ".msh";
+  // Gmsh does not poll the interrupt flag: a signal while it meshes ends the
+  // run through the watchdog (core/interrupt.h), which removes this file.
+  ScopedTemporary registered(tmp, ScopedTemporary::Kind::File);
   std::string error;
   if (!gmsh.write_msh(static_cast<int>(d), target_tets, tmp.c_str(), error)) {
     std::error_code ec;
@@ -134,6 +139,8 @@ void write_domain_msh(Domain d, std::size_t target_tets, const std::string& path
     throw std::runtime_error(error);
   }
   try {
+    const auto commit = hold_off_watchdog();
+    throw_if_interrupted();  // nothing is written after a signal
     std::filesystem::rename(tmp, path);
   } catch (...) {
     std::error_code ec;

@@ -4,6 +4,7 @@
 #include <array>
 #include <charconv>
 #include <filesystem>
+#include <memory>
 #include <map>
 #include <span>
 #include <ostream>
@@ -335,6 +336,9 @@ FoamReport write_foam(const PolyMesh& mesh, const std::string& case_dir, const F
   const fs::path dir(case_dir), poly = dir / "constant" / "polyMesh";
   const bool had_mesh = fs::exists(fs::symlink_status(poly));
   const std::vector<fs::path> created = create_missing_directories(dir / "constant");
+  std::vector<std::unique_ptr<ScopedTemporary>> registered;  // removed if the watchdog ends the run
+  for (const fs::path& c : created)
+    registered.push_back(std::make_unique<ScopedTemporary>(c, ScopedTemporary::Kind::EmptyDir));
   try {
     write_directory_atomically(poly, [&](const fs::path& tmp) { write_poly_mesh(mesh, fc, tmp, options); });
     if (options.write_system) write_directory_if_absent(dir / "system", write_system);

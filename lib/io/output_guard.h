@@ -13,6 +13,12 @@
 //    OUT must not exist, be empty, or already be a case (has constant/ or
 //    system/); any other directory is refused unless `force`; OUT being a
 //    file is refused.
+//  - Never through a link: an output path that is a symbolic link (to
+//    anything), or a case whose constant/, constant/polyMesh or system/ is
+//    one, is refused even with `force`; so are FIFOs, devices and sockets.
+//  - A new output's parent directory must exist (files and cases alike), and
+//    every name component must fit NAME_MAX with room for the temporary's
+//    suffix.
 #pragma once
 #include <span>
 #include <string>
@@ -31,6 +37,11 @@ enum class OutputKind {
 // replacing an input, a directory by a file, or a file by a case.
 void check_output_target(std::span<const std::string> inputs, const std::string& out, OutputKind kind,
                          bool force, const std::string& extension = "");
+
+// An output directory (a case, the demo's): UsageError when `dir` is a link,
+// exists and is not a directory, or does not exist and neither does its
+// parent. Returns whether it exists.
+bool check_output_directory(const std::string& dir);
 
 // The case rules alone (used by write_foam): UsageError unless `case_dir`
 // does not exist, is empty, is a case, or `force` and a directory.

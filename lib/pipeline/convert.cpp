@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <new>
 
 #include <sys/resource.h>
 
@@ -35,7 +36,13 @@ auto run_stage(ConvertReport& report, const ConvertHooks& hooks, const char* nam
   throw_if_interrupted();
   const Stopwatch clock;
   Json stats;
-  auto value = stage(stats);
+  auto value = [&] {
+    try {
+      return stage(stats);
+    } catch (const std::bad_alloc&) {
+      throw OutOfMemory(name, peak_rss_mb());
+    }
+  }();
   report.stages.push_back(StageRecord{name, clock.seconds(), std::move(stats), peak_rss_mb()});
   if (hooks.stage_done) hooks.stage_done(report.stages.back());
   return value;
