@@ -303,6 +303,34 @@ TEST(VtuPoly, EveryCellsArrayIsCheckedAgainstTheOthers) {
   EXPECT_NE(what.find("DataArray 'connectivity': point 1 of the cell's faces is missing"), std::string::npos) << what;
 }
 
+// A face is listed at most twice, in opposite senses: a third cell listing
+// it (non-manifold) or a second listing in the same sense (two cells on one
+// side of it) is refused, naming the cell.
+TEST(VtuPoly, FaceOfThreeCellsOrTwiceInOneSenseIsRefused) {
+  PolyMesh m = two_materials();
+  FaceId shared = FaceId::invalid();
+  for (std::size_t f = 0; f < m.num_faces(); ++f)
+    if (m.face_neighbour[f].valid()) shared = FaceId(f);
+  ASSERT_TRUE(shared.valid());
+  PolyMesh three = m;  // a third cell made of the shared face alone
+  three.add_cell(std::vector<HalfFace>{HalfFace(shared, 0)}, 5, VertexId(2u));
+  const fs::path p = scratch("three.vtu");
+  write_vtu_poly(three, p.string());
+  auto [place, what] = read_error(slurp(p));
+  EXPECT_EQ(place, "cell 2");
+  EXPECT_NE(what.find("DataArray 'faces': face (points "), std::string::npos) << what;
+  EXPECT_NE(what.find(" is already shared by cells 0 and 1: a face of three cells (non-manifold)"), std::string::npos)
+      << what;
+  PolyMesh same = m;  // cell 1 lists the shared face as cell 0 sees it
+  for (HalfFace& h : same.cell_faces)
+    if (h == HalfFace(shared, 1)) h = HalfFace(shared, 0);
+  write_vtu_poly(same, p.string());
+  std::tie(place, what) = read_error(slurp(p));
+  EXPECT_EQ(place, "cell 1");
+  EXPECT_NE(what.find(" is listed in the same sense by cell 0: two cells on one side of a face"), std::string::npos)
+      << what;
+}
+
 // Every writer option: ascii; inline base64 and appended raw, each
 // uncompressed and zlib at levels 1 and 9.
 std::vector<std::pair<std::string, VtuOptions>> every_vtu_option() {

@@ -227,34 +227,54 @@ CanonicalLoop canonical(const std::vector<PointId>& loop) {
 }
 
 
-// Pairs occurrences into faces: an open (unpaired) face waits under its
-// canonical loop for an occurrence in the opposite sense. Returns the
-// half-face of every occurrence.
+// "face (points 4 9 7 ...)" for errors.
+std::string face_points(const std::vector<PointId>& loop) {
+  std::string s = "face (points";
+  for (std::size_t k = 0; k < loop.size() && k < 8; ++k) {
+    s += ' ';
+    s += std::to_string(loop[k].idx);
+  }
+  s += loop.size() > 8 ? " ...)" : ")";
+  return s;
+}
+
+// Pairs occurrences into faces: a face is listed at most twice, in opposite
+// senses (by its two cells, or by one cell on both sides of a slit); a third
+// listing (a face of three cells: non-manifold) or a second in the same
+// sense (two cells on one side of it) is an error. An occurrence left alone
+// is a boundary face. Returns the half-face of every occurrence.
 std::vector<HalfFace> pair_faces(const VtkXml& f, const std::vector<Occurrence>& occ, PolyMesh& mesh) {
   // Per-occurrence face classification (see vtu_poly_writer.h).
   const bool classified = f.find_array("FieldData", "face_kind") != nullptr;
   const auto kinds = optional_ints(f, "FieldData", "face_kind", occ.size(), -1, 0, static_cast<int>(FaceKind::Fracture));
   const auto tags = optional_ints(f, "FieldData", "face_tag", occ.size(), 0, kInt32Min, kInt32Max);
-  struct Open { FaceId face; bool reversed; };
-  std::map<std::vector<std::uint32_t>, std::vector<Open>> open;
+  struct Slot { FaceId face; bool reversed; bool paired; };
+  std::map<std::vector<std::uint32_t>, Slot> slots;  // by canonical loop
   std::vector<HalfFace> half(occ.size());
   for (std::size_t o = 0; o < occ.size(); ++o) {
     CanonicalLoop c = canonical(occ[o].loop);
-    auto& waiting = open[c.key];
-    auto it = std::find_if(waiting.begin(), waiting.end(), [&](const Open& w) { return w.reversed != c.reversed; });
-    if (it != waiting.end()) {
-      mesh.face_neighbour[it->face.idx] = occ[o].cell;
-      half[o] = HalfFace(it->face, 1);
-      if (classified && (kinds[o] != static_cast<std::int64_t>(mesh.face_kind[it->face.idx]) ||
-                         tags[o] != mesh.face_tag[it->face.idx]))
-        f.fail_at("cell " + std::to_string(occ[o].cell.idx), "the two sides of a face disagree on its kind or tag");
-      waiting.erase(it);
+    const auto [it, fresh] = slots.try_emplace(std::move(c.key), Slot{FaceId::invalid(), c.reversed, false});
+    Slot& slot = it->second;
+    if (fresh) {
+      const FaceKind kind = classified ? static_cast<FaceKind>(kinds[o]) : FaceKind::Interior;
+      slot.face = mesh.add_face(occ[o].loop, occ[o].cell, CellId::invalid(), kind, static_cast<std::int32_t>(tags[o]));
+      half[o] = HalfFace(slot.face, 0);
       continue;
     }
-    const FaceKind kind = classified ? static_cast<FaceKind>(kinds[o]) : FaceKind::Interior;
-    const FaceId face = mesh.add_face(occ[o].loop, occ[o].cell, CellId::invalid(), kind, static_cast<std::int32_t>(tags[o]));
-    half[o] = HalfFace(face, 0);
-    waiting.push_back({face, c.reversed});
+    const std::size_t cell = occ[o].cell.idx, owner = mesh.face_owner[slot.face.idx].idx;
+    if (slot.paired)
+      fail_cell(f, cell, "faces", face_points(occ[o].loop) + " is already shared by cells " + std::to_string(owner) +
+                                      " and " + std::to_string(mesh.face_neighbour[slot.face.idx].idx) +
+                                      ": a face of three cells (non-manifold)");
+    if (slot.reversed == c.reversed)
+      fail_cell(f, cell, "faces", face_points(occ[o].loop) + " is listed in the same sense by cell " +
+                                      std::to_string(owner) + ": two cells on one side of a face");
+    mesh.face_neighbour[slot.face.idx] = occ[o].cell;
+    half[o] = HalfFace(slot.face, 1);
+    slot.paired = true;
+    if (classified && (kinds[o] != static_cast<std::int64_t>(mesh.face_kind[slot.face.idx]) ||
+                       tags[o] != mesh.face_tag[slot.face.idx]))
+      f.fail_at("cell " + std::to_string(cell), "the two sides of a face disagree on its kind or tag");
   }
   if (!classified)  // no classification stored: an unpaired face lies on the boundary
     for (std::size_t i = 0; i < mesh.num_faces(); ++i)
