@@ -46,7 +46,7 @@ void require_valid_mesh(const CheckResult& c, const std::string& source);
 // `mesh_source`) is the dual of, else an InputError naming both files:
 //  - the vertices match both ways (input numbering): every cell's primal
 //    vertex is one of the primal's, every primal vertex has a cell;
-//  - exactly (bit for bit): every dual point on a model vertex (class dim 0,
+//  - exactly (== on each coordinate): every dual point on a model vertex (class dim 0,
 //    which no stage moves) is at the primal vertex of one of its cells;
 //  - every primal vertex lies in its cells' bounding box grown by the box's
 //    own size on each side (a dual cell surrounds its vertex; a coarse test
