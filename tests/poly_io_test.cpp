@@ -9,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <set>
 #include <sstream>
@@ -224,6 +225,110 @@ TEST(VtuPoly, ReaderErrorsNameTheFile) {
     EXPECT_EQ(e.place(), "cell 0");
   }
   EXPECT_THROW(read_vtu_poly((p.parent_path() / "missing.vtu").string()), InputError);
+}
+
+// An ASCII VTU with the values of one DataArray rewritten by `edit` (its
+// values as text tokens, in file order).
+std::string with_array(std::string s, const std::string& name,
+                       const std::function<void(std::vector<std::string>&)>& edit) {
+  const std::size_t tag = s.find("Name=\"" + name + "\"");
+  const std::size_t begin = s.find('>', tag) + 1, end = s.find("</DataArray>", begin);
+  std::istringstream in(s.substr(begin, end - begin));
+  std::vector<std::string> values;
+  for (std::string v; in >> v;) values.push_back(v);
+  edit(values);
+  std::string text = "\n";
+  for (const std::string& v : values) text += " " + v;
+  return s.replace(begin, end - begin, text + "\n");
+}
+
+// The InputError of reading `bytes` ("(no error)" when it reads).
+std::pair<std::string, std::string> read_error(const std::string& bytes) {
+  try {
+    read_vtu_poly_bytes(bytes, "corrupt.vtu");
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.source(), "corrupt.vtu");
+    return {e.place(), e.what()};
+  }
+  return {"", "(no error)"};
+}
+
+// Each Cells array corrupted on its own (what VTK and ParaView read a cell
+// from) is refused, naming the array and the cell.
+TEST(VtuPoly, EveryCellsArrayIsCheckedAgainstTheOthers) {
+  const fs::path p = scratch("arrays.vtu");
+  write_vtu_poly(two_materials(), p.string());
+  const std::string s = slurp(p);
+  ASSERT_NO_THROW(read_vtu_poly_bytes(s, "corrupt.vtu"));
+  using V = std::vector<std::string>;
+  struct Case {
+    const char* array;
+    std::function<void(V&)> edit;
+    const char* place;
+    const char* what;
+  };
+  const Case cases[] = {
+      {"connectivity", [](V& v) { v[0] = "-7"; }, "cell 0", "DataArray 'connectivity': point id -7 at index 0 out of range"},
+      {"connectivity", [](V& v) { v[3] = "12"; }, "cell 0", "DataArray 'connectivity': point id 12 at index 3 out of range (12 points)"},
+      {"offsets", [](V& v) { v[0] = "1000000000"; }, "cell 0", "DataArray 'offsets': value 1000000000 is beyond the end of 'connectivity' (16 values)"},
+      {"offsets", [](V& v) { v[0] = "17"; v[1] = "16"; }, "cell 0", "beyond the end of 'connectivity'"},
+      {"offsets", [](V& v) { v[0] = "9"; v[1] = "8"; }, "cell 1", "DataArray 'offsets': value 8 is below the previous cell's end 9"},
+      {"offsets", [](V& v) { v[1] = "15"; }, "line", "DataArray 'offsets': the last cell ends at 15 but 'connectivity' has 16 values"},
+      {"offsets", [](V& v) { v.pop_back(); }, "line", "DataArray 'offsets' has 1 values for 2 cells"},
+      {"types", [](V& v) { v[1] = "12"; }, "cell 1", "DataArray 'types': type 12 is not a VTK_POLYHEDRON (42)"},
+      {"types", [](V& v) { v.push_back("42"); }, "line", "DataArray 'types' has 3 values for 2 cells"},
+      // A face count too high reads the next cell's record: faceoffsets disagrees.
+      {"faces", [](V& v) { v[0] = "7"; }, "cell 0", "DataArray 'faceoffsets': value 31 but the cell's record in 'faces' ends at 38"},
+      {"faces", [](V& v) { v.resize(v.size() - 3); }, "cell 1", "DataArray 'faces': face 5 has 4 points but the stream ends after 1"},
+      {"faces", [](V& v) { v[1] = "2"; }, "cell 0", "DataArray 'faces': face 0 has 2 points (at least 3)"},
+      {"faces", [](V& v) { v[2] = "99"; }, "cell 0", "DataArray 'faces': face 0 point id 99 at index 2 out of range"},
+      {"faces", [](V& v) { v[0] = "0"; }, "cell 0", "DataArray 'faces': face count 0 at index 0 (at least 1)"},
+      {"faceoffsets", [](V& v) { v[0] = "30"; }, "cell 0", "DataArray 'faceoffsets': value 30 but the cell's record in 'faces' ends at 31"},
+      {"faceoffsets", [](V& v) { v.pop_back(); }, "line", "DataArray 'faceoffsets' has 1 values for 2 cells"},
+      // connectivity against the faces: a point of another cell, one missing, one twice.
+      {"connectivity", [](V& v) { v[0] = "2"; }, "cell 0", "DataArray 'connectivity': point 2 is on none of the cell's faces"},
+      {"connectivity", [](V& v) { v[1] = v[0]; }, "cell 0", "DataArray 'connectivity': point 6 is listed twice"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(std::string(c.array) + ": " + c.what);
+    const auto [place, what] = read_error(with_array(s, c.array, c.edit));
+    EXPECT_EQ(place.rfind(c.place, 0), 0u) << place;
+    EXPECT_NE(what.find(c.what), std::string::npos) << what;
+  }
+  // A point dropped from connectivity (the offsets follow): named as missing.
+  std::string dropped = with_array(s, "connectivity", [](V& v) { v.erase(v.begin() + 8); });
+  dropped = with_array(dropped, "offsets", [](V& v) { v[1] = "15"; });
+  const auto [place, what] = read_error(dropped);
+  EXPECT_EQ(place, "cell 1");
+  EXPECT_NE(what.find("DataArray 'connectivity': point 1 of the cell's faces is missing"), std::string::npos) << what;
+}
+
+// A face is listed at most twice, in opposite senses: a third cell listing
+// it (non-manifold) or a second listing in the same sense (two cells on one
+// side of it) is refused, naming the cell.
+TEST(VtuPoly, FaceOfThreeCellsOrTwiceInOneSenseIsRefused) {
+  PolyMesh m = two_materials();
+  FaceId shared = FaceId::invalid();
+  for (std::size_t f = 0; f < m.num_faces(); ++f)
+    if (m.face_neighbour[f].valid()) shared = FaceId(f);
+  ASSERT_TRUE(shared.valid());
+  PolyMesh three = m;  // a third cell made of the shared face alone
+  three.add_cell(std::vector<HalfFace>{HalfFace(shared, 0)}, 5, VertexId(2u));
+  const fs::path p = scratch("three.vtu");
+  write_vtu_poly(three, p.string());
+  auto [place, what] = read_error(slurp(p));
+  EXPECT_EQ(place, "cell 2");
+  EXPECT_NE(what.find("DataArray 'faces': face (points "), std::string::npos) << what;
+  EXPECT_NE(what.find(" is already shared by cells 0 and 1: a face of three cells (non-manifold)"), std::string::npos)
+      << what;
+  PolyMesh same = m;  // cell 1 lists the shared face as cell 0 sees it
+  for (HalfFace& h : same.cell_faces)
+    if (h == HalfFace(shared, 1)) h = HalfFace(shared, 0);
+  write_vtu_poly(same, p.string());
+  std::tie(place, what) = read_error(slurp(p));
+  EXPECT_EQ(place, "cell 1");
+  EXPECT_NE(what.find(" is listed in the same sense by cell 0: two cells on one side of a face"), std::string::npos)
+      << what;
 }
 
 // Every writer option: ascii; inline base64 and appended raw, each

@@ -548,3 +548,61 @@ TEST(Validate, MaterialsBoundedByCurvedFacesAreNotCompared) {
   EXPECT_TRUE(r.geometry_ok());
   EXPECT_EQ(r.primal_material_volume.size(), 2u);
 }
+
+// ---- defects: the failed checks, each naming its cells (faces, entities, materials)
+
+TEST(Validate, SoundMeshesHaveNoDefects) {
+  EXPECT_TRUE(validate(box_row(3).build()).defects().empty());
+  EXPECT_TRUE(validate(cube_domain().dual, &cube_domain().primal).defects().empty());
+}
+
+TEST(Validate, DefectsNameTheOpenAndReversedCells) {
+  HandMesh h = box_row(3);
+  drop_face(h, 7);  // a side of box 0 (the x-faces come first: 0..3)
+  std::reverse(h.faces[12].loop.begin(), h.faces[12].loop.end());  // a side of box 2, now reversed
+  const ValidationReport r = validate(h.build());
+  const std::vector<Defect> d = r.defects();
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_EQ(d[0].check, "open_cells");
+  EXPECT_EQ(d[0].count, 2u);
+  EXPECT_EQ(d[0].items, (std::vector<std::string>{"cell 0", "cell 2 (a face reversed)"}));
+  EXPECT_EQ(defect_line(d[0]), "open_cells: 2 " + d[0].meaning + ": cell 0, cell 2 (a face reversed)");
+  EXPECT_EQ(defect_line(d[0], 1), "open_cells: 2 " + d[0].meaning + ": cell 0, and 1 more");
+  EXPECT_EQ(defects_sentence(d), defect_line(d[0]));
+  const std::string json = defects_json(d).dump(0);
+  EXPECT_NE(json.find("\"check\":\"open_cells\""), std::string::npos) << json;
+  EXPECT_NE(json.find("\"count\":2"), std::string::npos) << json;
+}
+
+TEST(Validate, DefectsNameTheBrokenFacesAndTheCellsListingThem) {
+  HandMesh h = box_row(2);
+  h.faces[2].loop.resize(2);                 // face 2: two points
+  h.cells[0].push_back(HalfFace(FaceId(1), 1));  // box 0 lists box 1's side of face 1
+  h.cells[1].push_back(HalfFace(FaceId(1), 1));  // box 1 lists its side of face 1 twice
+  const ValidationReport r = validate(h.build());
+  EXPECT_EQ(r.error_faces, (std::vector<FaceId>{FaceId(1), FaceId(2)}));
+  EXPECT_EQ(r.error_cells, std::vector<CellId>{CellId(0)});
+  const std::vector<Defect> d = r.defects();
+  ASSERT_GE(d.size(), 1u);
+  const Defect& faces = d.back();
+  EXPECT_EQ(faces.check, "face_errors");
+  EXPECT_EQ(faces.count, 3u);
+  EXPECT_EQ(faces.items, (std::vector<std::string>{"face 1", "face 2", "cell 0 (lists a face side not its own)"}));
+}
+
+TEST(Validate, DefectsNameTheMaterialsAndTheModelEntities) {
+  const Pipeline& p = cube_domain();
+  PolyMesh pm = p.dual;
+  pm.cell_material[3] = 99;
+  for (std::size_t f = 0; f < pm.num_faces(); ++f)
+    if (pm.face_kind[f] == FaceKind::External && pm.face_tag[f] == p.primal.model().entities[2][0].tag) pm.face_tag[f] = 77;
+  const ValidationReport r = validate(pm, &p.primal);
+  const std::vector<Defect> d = r.defects();
+  ASSERT_EQ(d.size(), 2u);
+  EXPECT_EQ(d[0].check, "missing_model_entities");
+  EXPECT_EQ(d[0].items, only("model face " + std::to_string(p.primal.model().entities[2][0].tag)));
+  EXPECT_EQ(d[1].check, "volume_mismatches");
+  EXPECT_EQ(d[1].count, 2u);
+  ASSERT_EQ(d[1].items.size(), 2u);
+  EXPECT_EQ(d[1].items[1].rfind("material 99: dual ", 0), 0u) << d[1].items[1];
+}

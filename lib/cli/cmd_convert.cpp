@@ -24,7 +24,10 @@ const CommandSpec kConvert{
 const CommandSpec kCheck{
     "check", "check FILE.vtu [--json] [--threads N] [--quiet]",
     "Re-reads a polyhedral VTU written by polydual and reports the topological\n"
-    "validation (closed cells, faces) and the exact star-shaped verdicts.",
+    "validation (closed cells, faces) and the exact star-shaped verdicts. Exits 1,\n"
+    "naming the failed checks and their cells on stderr, when the mesh is not sound\n"
+    "(topology_ok or geometry_ok false); invalid (non-star-shaped) cells are reported,\n"
+    "not failed.",
     1, 1,
     {"--threads", "--json", "--quiet"}};
 
@@ -38,6 +41,9 @@ int cmd_convert(const Settings& s) {
   const Json summary = convert_summary(r, s.params);
   if (s.json) print_json(summary);
   else print_convert_summary(summary);
+  if (const std::vector<Defect> defects = r.check.validation.defects(); !defects.empty())
+    print_defects("convert", "warning", s.out + " written, but the dual is not sound (--require-valid refuses it):",
+                  defects);
   return 0;
 }
 
@@ -55,7 +61,13 @@ int cmd_check(const Settings& s) {
                 pm.num_faces(), pm.num_points());
     std::printf("%s\n", j.dump(0).c_str());
   }
-  return 0;
+  const std::vector<Defect> defects = c.validation.defects();
+  if (defects.empty()) return 0;
+  print_defects("check", "error", s.positional[0] + ": not a sound mesh (topology_ok " +
+                                      (c.validation.ok() ? "true" : "false") + ", geometry_ok " +
+                                      (c.validation.geometry_ok() ? "true" : "false") + "):",
+                defects);
+  return 1;
 }
 
 }  // namespace polydual::cli

@@ -53,16 +53,22 @@ Json run_domain(Domain d, const Settings& s, const std::filesystem::path& dir) {
   Json j = convert_summary(r, s.params);
   j.set("foam", write_poly_mesh(r.mesh, (dir / (name + "_case")).string(), PolyFormat::Foam, {}, s.write));
   const PolyMesh back = read_vtu_poly(vtu);
-  const Json chk = mesh_summary(back, check_mesh(back, nullptr), nullptr);
+  const CheckResult back_check = check_mesh(back, nullptr);
+  const Json chk = mesh_summary(back, back_check, nullptr);
   j.set("domain", name);
   j.set("generate_seconds", gen);
   j.set("recheck", chk);
   const bool same = val(chk, "invalid_cells") == val(j, "invalid_after") && val(chk, "cells") == val(j, "cells");
+  // "FAIL": the validation of the dual or of the VTU read back found defects.
+  const std::vector<Defect> defects = r.check.validation.defects(), back_defects = back_check.validation.defects();
+  const bool sound = defects.empty() && back_defects.empty();
   std::printf("%-9s %8s %8s %9s %8s %8s %7s %6s %8.2f\n", name.c_str(), val(j, "tets").c_str(),
               val(j, "cells").c_str(), val(j, "faces").c_str(), val(j, "invalid_before").c_str(),
-              val(j, "invalid_after").c_str(), val(j, "closed_cells").c_str(), same ? "ok" : "DIFF",
+              val(j, "invalid_after").c_str(), val(j, "closed_cells").c_str(), !sound ? "FAIL" : same ? "ok" : "DIFF",
               clock.seconds());
   std::fflush(stdout);
+  if (!defects.empty()) print_defects("demo", "warning", name + ": the dual is not sound:", defects);
+  if (!back_defects.empty()) print_defects("demo", "warning", vtu + " read back is not sound:", back_defects);
   return j;
 }
 

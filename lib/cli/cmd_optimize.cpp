@@ -20,7 +20,7 @@ const CommandSpec kOptimize{
     "optimize", "optimize IN.vtu -o OUT.vtu [options]",
     "Untangles and smooths a polyhedral mesh written by polydual (paper §3.3).",
     1, 1,
-    {"-o", "--vtu-encoding", "--zlib", "--primal", "--feature-angle", "--optimize", "--planarity", "--metric", "--derivatives", "--relaxation", "--tol", "--polish-sweeps", "--polish-share", "--worst-rounds", "--settle-move", "--max-iter", "--threads",
+    {"-o", "--vtu-encoding", "--zlib", "--primal", "--require-valid", "--feature-angle", "--optimize", "--planarity", "--metric", "--derivatives", "--relaxation", "--tol", "--polish-sweeps", "--polish-share", "--worst-rounds", "--settle-move", "--max-iter", "--threads",
      "--json", "--quiet"}};
 
 int cmd_optimize(const Settings& s) {
@@ -39,6 +39,7 @@ int cmd_optimize(const Settings& s) {
   if (!s.primal.empty()) {
     clock = Stopwatch();
     primal = std::make_unique<ClassifiedTetMesh>(classify(read_tet_mesh(s.primal), s.params.classify));
+    require_primal_of(pm, s.positional[0], *primal);
     seconds.set("primal", clock.seconds());
   }
   clock = Stopwatch();
@@ -46,6 +47,7 @@ int cmd_optimize(const Settings& s) {
   const OptimizeResult r = optimize_mesh(pm, primal.get(), s.params.optim, progress.progress());
   progress.end_line();
   seconds.set("optimize", clock.seconds());
+  if (s.params.split.require_valid) require_valid_mesh(r.check, s.positional[0]);
   const Json w = write_poly_mesh(pm, s.out, format, verdict_fields(r.check.verdicts), s.write);
   Json j = mesh_summary(pm, r.check, nullptr);
   j.set("input", s.positional[0]);
@@ -57,6 +59,9 @@ int cmd_optimize(const Settings& s) {
   if (s.json) print_json(j);
   else std::printf("%s -> %s: invalid cells %d -> %d\n", s.positional[0].c_str(), s.out.c_str(),
                    r.optim.invalid_before, r.optim.invalid_after);
+  if (const std::vector<Defect> defects = r.check.validation.defects(); !defects.empty())
+    print_defects("optimize", "warning", s.out + " written, but the mesh is not sound (--require-valid refuses it):",
+                  defects);
   return 0;
 }
 

@@ -63,7 +63,8 @@ const std::vector<OptionDef> kTable = {
      [](const Settings& d) { return std::to_string(d.params.split.max_rounds); },
      [](Settings& s, const std::string& v) { s.params.split.max_rounds = std::stoi(v); }},
     {"--require-valid", K::Flag, "", kNoRange, kNoRange,
-     "fail (exit 1, nothing written) if any cell is still invalid, naming each cell and its primal vertex",
+     "fail (exit 1, nothing written) if any cell is still invalid or the validation finds a defect (open cell, "
+     "face error, missing model entity, volume mismatch), naming each cell",
      nullptr, [](Settings& s, const std::string&) { s.params.split.require_valid = true; }},
     {"--optimize", K::Choice, "none|untangle|local|global", kNoRange, kNoRange,
      "untangle and smooth: the paper's local Newton scheme, a global Ceres L-BFGS solve, untangling only "
@@ -142,7 +143,7 @@ const std::vector<OptionDef> kTable = {
      [](Settings& s, const std::string& v) { s.threads = std::stoi(v); }},
     {"--json", K::Flag, "", kNoRange, kNoRange, "print one JSON summary object on stdout", nullptr,
      [](Settings& s, const std::string&) { s.json = true; }},
-    {"--quiet", K::Flag, "", kNoRange, kNoRange, "no warnings or progress on stderr", nullptr,
+    {"--quiet", K::Flag, "", kNoRange, kNoRange, "no warnings or progress on stderr (an output's defects are still reported)", nullptr,
      [](Settings& s, const std::string&) { s.quiet = true; }},
 };
 

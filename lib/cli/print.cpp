@@ -15,6 +15,13 @@ void print_warnings(const std::vector<std::string>& warnings, bool quiet) {
 
 void print_json(const Json& j) { std::cout << j.dump() << "\n"; }
 
+void print_defects(const std::string& command, const char* level, const std::string& headline,
+                   const std::vector<Defect>& defects) {
+  std::cout.flush();  // the summary first when both go to one terminal
+  std::fprintf(stderr, "polydual %s: %s: %s\n", command.c_str(), level, headline.c_str());
+  for (const Defect& d : defects) std::fprintf(stderr, "  %s\n", defect_line(d).c_str());
+}
+
 void print_convert_summary(const Json& j) {
   auto val = [&](const char* k) { return j.find(k) ? j.find(k)->dump(0) : std::string("?"); };
   const Json* out = j.find("output");
@@ -24,6 +31,8 @@ void print_convert_summary(const Json& j) {
   std::printf("  invalid cells (exact star test): before %s, after %s; closed cells %s; slit cells %s\n",
               val("invalid_before").c_str(), val("invalid_after").c_str(), val("closed_cells").c_str(),
               val("slit_cells").c_str());
+  if (const Json* d = j.find("defects"); d && d->dump(0) != "[]")
+    std::printf("  NOT SOUND: the validation found defects (listed on stderr)\n");
   std::printf("  seconds %s\n", val("seconds").c_str());
 }
 

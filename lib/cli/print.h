@@ -13,6 +13,11 @@ void print_convert_summary(const Json& summary);
 // The reader's warnings on stderr, one line each (nothing when quiet).
 void print_warnings(const std::vector<std::string>& warnings, bool quiet);
 void print_json(const Json& j);  // one object on stdout
+// A validation's failed checks on stderr: "polydual COMMAND: LEVEL: HEADLINE"
+// then one line per defect (its cells, at most 10, then "and N more").
+// Printed even when quiet: they say the output is broken.
+void print_defects(const std::string& command, const char* level, const std::string& headline,
+                   const std::vector<Defect>& defects);
 
 // Shows the progress of long stages on stderr: only once a stage has run for
 // 2 s (POLYDUAL_PROGRESS_DELAY seconds if set), as one live line on a

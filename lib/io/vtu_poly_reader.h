@@ -12,11 +12,19 @@
 // A face listed twice by one cell in opposite senses comes back as a slit face
 // (owner == neighbour).
 //
+// Every Cells array is read and checked against the others, since VTK and
+// ParaView read a cell from some of them only: connectivity (point ids in
+// range), offsets (one per cell, non-decreasing, the last equal to the
+// connectivity's size), types (every cell 42, VTK_POLYHEDRON), faces (per
+// cell a face count >= 1, then per face a point count >= 3 and its point ids
+// in range) and faceoffsets (one per cell, the end of its record in faces),
+// and each cell's points in connectivity are exactly the points of its faces,
+// each listed once.
 // Optional arrays (material, primal_vertex, class_dim, class_tag, face_kind,
 // face_tag) default to 0 / invalid / unclassified / inferred kinds when absent.
-// Errors: InputError(path, "line N", "byte N" or "cell N", what); values out of
-// range of their field (class_dim outside -1..3, tags beyond 32 bits, face
-// kinds other than 0..3) are errors too.
+// Errors: InputError(path, "line N", "byte N" or "cell N", what), `what`
+// naming the DataArray; values out of range of their field (class_dim outside
+// -1..3, tags beyond 32 bits, face kinds other than 0..3) are errors too.
 #pragma once
 #include <string>
 #include <string_view>

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <set>
 #include <span>
@@ -63,12 +64,16 @@ bool has_repeated_point(std::span<const PointId> loop, std::vector<PointId>& sor
   return std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end();
 }
 
+// Per face, what check_faces and check_half_face_references found.
+constexpr char kLoopInRange = 1;  // every point id of its loop in range
+constexpr char kFaceError = 2;    // counted in face_errors
+
 // Per face: its loop, owner, neighbour and kind on their own (in parallel;
-// the error count is a sum of integers). Returns which faces have every
-// point id in range (the later phases read only those loops).
+// the error count is a sum of integers). Returns each face's status (the
+// later phases read only the loops in range).
 std::vector<char> check_faces(const PolyMesh& pm, ValidationReport& r) {
   const std::size_t nf = pm.num_faces();
-  std::vector<char> loop_in_range(nf, 1);
+  std::vector<char> status(nf, 0);
   tbb::enumerable_thread_specific<std::pair<std::size_t, std::vector<PointId>>> local;  // (errors, scratch)
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nf, 4096), [&](const auto& range) {
     auto& [errors, sorted] = local.local();
@@ -76,34 +81,52 @@ std::vector<char> check_faces(const PolyMesh& pm, ValidationReport& r) {
       const auto loop = pm.face(FaceId(f));
       bool in_range = true;
       for (PointId p : loop) in_range = in_range && p.idx < pm.num_points();
-      loop_in_range[f] = char(in_range);
       const CellId own = pm.face_owner[f], nb = pm.face_neighbour[f];
       const bool bad = loop.size() < 3 || !in_range || has_repeated_point(loop, sorted) || !own.valid() ||
                        own.idx >= pm.num_cells() || (nb.valid() && nb.idx >= pm.num_cells()) ||
                        (pm.face_kind[f] == FaceKind::External) != !nb.valid();
+      status[f] = char((in_range ? kLoopInRange : 0) | (bad ? kFaceError : 0));
       errors += bad;
     }
   });
   for (const auto& [errors, sorted] : local) r.face_errors += errors;
-  return loop_in_range;
+  return status;
 }
 
 // Every half-face listed by the cell it belongs to, exactly once; none listed
 // for a face without a neighbour. A reference to no face or from the wrong
-// cell is an error of its own.
-void check_half_face_references(const PolyMesh& pm, ValidationReport& r) {
+// cell is an error of its own (its cell listed in error_cells); a face whose
+// half-faces are listed wrongly is marked kFaceError.
+void check_half_face_references(const PolyMesh& pm, ValidationReport& r, std::vector<char>& status) {
   std::vector<std::uint8_t> refs(2 * pm.num_faces(), 0);
+  std::size_t last_error_cell = pm.num_cells();
   for (std::size_t c = 0; c < pm.num_cells(); ++c)
     for (HalfFace h : pm.cell(CellId(c))) {
       if (h.face().idx >= pm.num_faces() || pm.half_face_cell(h) != CellId(c)) {
         ++r.face_errors;
+        if (last_error_cell != c) {
+          ++r.error_cell_count;
+          if (r.error_cells.size() < kListedDefects) r.error_cells.push_back(CellId(c));
+        }
+        last_error_cell = c;
         continue;
       }
       refs[h.code] = std::uint8_t(std::min(refs[h.code] + 1, 2));
     }
   for (std::size_t f = 0; f < pm.num_faces(); ++f) {
     const int expect_neighbour = pm.face_neighbour[f].valid() ? 1 : 0;
-    r.face_errors += refs[2 * f] != 1 || refs[2 * f + 1] != expect_neighbour;
+    const bool bad = refs[2 * f] != 1 || refs[2 * f + 1] != expect_neighbour;
+    r.face_errors += bad;
+    if (bad) status[f] |= kFaceError;
+  }
+}
+
+// The faces marked kFaceError: their number and the first kListedDefects.
+void list_error_faces(const std::vector<char>& status, ValidationReport& r) {
+  for (std::size_t f = 0; f < status.size(); ++f) {
+    if (!(status[f] & kFaceError)) continue;
+    ++r.error_face_count;
+    if (r.error_faces.size() < kListedDefects) r.error_faces.push_back(FaceId(f));
   }
 }
 
@@ -157,9 +180,9 @@ void count_edge_uses(const std::vector<std::uint64_t>& fw, const std::vector<std
 // Calls fn(a, b) for every edge of cell c's oriented loops (mesh point ids),
 // skipping the loops not in range.
 template <class Fn>
-void for_each_loop_edge(const PolyMesh& pm, std::uint32_t c, const std::vector<char>& loop_in_range, Fn&& fn) {
+void for_each_loop_edge(const PolyMesh& pm, std::uint32_t c, const std::vector<char>& status, Fn&& fn) {
   for (HalfFace h : pm.cell(CellId(c))) {
-    if (h.face().idx >= pm.num_faces() || !loop_in_range[h.face().idx]) continue;
+    if (h.face().idx >= pm.num_faces() || !(status[h.face().idx] & kLoopInRange)) continue;
     const auto f = pm.face(h.face());
     const std::size_t n = f.size();
     auto at = [&](std::size_t k) { return (h.side() == 0 ? f[k] : f[n - 1 - k]).idx; };
@@ -172,12 +195,12 @@ void for_each_loop_edge(const PolyMesh& pm, std::uint32_t c, const std::vector<c
 // key lists (nf, nb are the two directions' counts, and every test is
 // symmetric in them). A loop edge from a point to itself counts backward
 // only, as in the sorted lists.
-void count_small_cell_edges(const PolyMesh& pm, std::uint32_t c, const std::vector<char>& loop_in_range,
+void count_small_cell_edges(const PolyMesh& pm, std::uint32_t c, const std::vector<char>& status,
                             std::span<const PointId> points, CellScratch& s, CellCheck& r) {
   constexpr std::size_t K = CellScratch::kSmall;
   for (std::size_t i = 0; i < points.size(); ++i) s.local[points[i].idx] = std::uint8_t(i);
   s.used.clear();
-  for_each_loop_edge(pm, c, loop_in_range, [&](std::uint32_t a, std::uint32_t b) {
+  for_each_loop_edge(pm, c, status, [&](std::uint32_t a, std::uint32_t b) {
     const std::uint16_t i = std::uint16_t(s.local[a] * K + s.local[b]);
     if (s.count[i]++ == 0) s.used.push_back(i);
   });
@@ -190,11 +213,11 @@ void count_small_cell_edges(const PolyMesh& pm, std::uint32_t c, const std::vect
 }
 
 // The edge uses of any cell by sorted key lists (loops out of range skipped).
-void count_cell_edges_sorted(const PolyMesh& pm, std::uint32_t c, const std::vector<char>& loop_in_range,
+void count_cell_edges_sorted(const PolyMesh& pm, std::uint32_t c, const std::vector<char>& status,
                              CellScratch& s, CellCheck& r) {
   s.forward.clear();
   s.backward.clear();
-  for_each_loop_edge(pm, c, loop_in_range, [&](std::uint32_t a, std::uint32_t b) {
+  for_each_loop_edge(pm, c, status, [&](std::uint32_t a, std::uint32_t b) {
     (a < b ? s.forward : s.backward).push_back((std::uint64_t(std::min(a, b)) << 32) | std::max(a, b));
   });
   std::sort(s.forward.begin(), s.forward.end());
@@ -204,11 +227,11 @@ void count_cell_edges_sorted(const PolyMesh& pm, std::uint32_t c, const std::vec
 
 // Closed: every edge of the cell's oriented loops is used once in each
 // direction; manifold: by exactly two loops; slit: a face appears twice.
-CellCheck check_cell(const PolyMesh& pm, std::uint32_t c, const std::vector<char>& loop_in_range, CellScratch& s) {
+CellCheck check_cell(const PolyMesh& pm, std::uint32_t c, const std::vector<char>& status, CellScratch& s) {
   CellCheck r;
   s.faces_seen.clear();
   for (HalfFace h : pm.cell(CellId(c))) {
-    if (h.face().idx >= pm.num_faces() || !loop_in_range[h.face().idx]) {
+    if (h.face().idx >= pm.num_faces() || !(status[h.face().idx] & kLoopInRange)) {
       r.sound = false;
       continue;
     }
@@ -217,26 +240,26 @@ CellCheck check_cell(const PolyMesh& pm, std::uint32_t c, const std::vector<char
   std::sort(s.faces_seen.begin(), s.faces_seen.end());
   r.slit = std::adjacent_find(s.faces_seen.begin(), s.faces_seen.end()) != s.faces_seen.end();
   if (!r.sound) {
-    count_cell_edges_sorted(pm, c, loop_in_range, s, r);
+    count_cell_edges_sorted(pm, c, status, s, r);
     return r;
   }
   const std::span<const PointId> points = s.points(CellId(c));  // cell_points order
-  if (points.size() <= CellScratch::kSmall) count_small_cell_edges(pm, c, loop_in_range, points, s, r);
-  else count_cell_edges_sorted(pm, c, loop_in_range, s, r);
+  if (points.size() <= CellScratch::kSmall) count_small_cell_edges(pm, c, status, points, s, r);
+  else count_cell_edges_sorted(pm, c, status, s, r);
   r.volume = volume_around(pm, CellId(c), points);
   return r;
 }
 
 // Every cell checked in parallel, then counted and summed in cell order (the
 // volumes' sums do not depend on the thread count).
-void check_cells(const PolyMesh& pm, const std::vector<char>& loop_in_range, ValidationReport& r) {
+void check_cells(const PolyMesh& pm, const std::vector<char>& status, ValidationReport& r) {
   const std::size_t nc = pm.num_cells();
   std::vector<CellCheck> checks(nc);
   tbb::enumerable_thread_specific<CellScratch> scratch(std::cref(pm));
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nc, 256), [&](const auto& range) {
     CellScratch& s = scratch.local();
     for (std::size_t c = range.begin(); c != range.end(); ++c)
-      checks[c] = check_cell(pm, static_cast<std::uint32_t>(c), loop_in_range, s);
+      checks[c] = check_cell(pm, static_cast<std::uint32_t>(c), status, s);
   });
   for (std::size_t c = 0; c < nc; ++c) {
     const CellCheck& k = checks[c];
@@ -244,7 +267,8 @@ void check_cells(const PolyMesh& pm, const std::vector<char>& loop_in_range, Val
     r.manifold_cells += k.closed && k.manifold;
     r.misoriented_cells += k.misoriented;
     r.slit_cells += k.slit;
-    if (!k.closed && r.open_cells.size() < 100) r.open_cells.push_back(CellId(c));
+    if (!k.closed && r.open_cells.size() < kListedDefects) r.open_cells.push_back(CellId(c));
+    if (k.misoriented && r.misoriented_list.size() < kListedDefects) r.misoriented_list.push_back(CellId(c));
     if (!k.sound) continue;
     if (k.closed && !k.slit && k.volume <= 0) ++r.negative_volume_cells;
     r.material_volume[pm.cell_material[c]] += k.volume;
@@ -253,7 +277,7 @@ void check_cells(const PolyMesh& pm, const std::vector<char>& loop_in_range, Val
 
 // design §10: every model vertex is a dual point (at its place), every model edge
 // is covered by dual edges, every model face by dual faces with its tag.
-void check_model_entities(const PolyMesh& pm, const std::vector<char>& loop_in_range,
+void check_model_entities(const PolyMesh& pm, const std::vector<char>& status,
                           const ClassifiedTetMesh& primal, ValidationReport& r) {
   using Placed = std::tuple<std::int32_t, double, double, double>;  // (tag, x, y, z)
   std::set<Placed> model_vertices;
@@ -276,7 +300,7 @@ void check_model_entities(const PolyMesh& pm, const std::vector<char>& loop_in_r
     return other == on_edge || (other.dim == 0 && edge_vertex.count({on_edge.tag, other.tag}));
   };
   for (std::size_t f = 0; f < pm.num_faces(); ++f) {
-    if (!loop_in_range[f]) continue;
+    if (!(status[f] & kLoopInRange)) continue;
     const auto loop = pm.face(FaceId(f));
     for (std::size_t k = 0; k < loop.size(); ++k) {
       const ModelRef a = pm.point_class[loop[k].idx], b = pm.point_class[loop[(k + 1) % loop.size()].idx];
@@ -336,14 +360,92 @@ ValidationReport validate(const PolyMesh& pm, const ClassifiedTetMesh* primal, d
   r.cells = pm.num_cells();
   r.faces = pm.num_faces();
   r.points = pm.num_points();
-  const std::vector<char> loop_in_range = check_faces(pm, r);
-  check_half_face_references(pm, r);
-  check_cells(pm, loop_in_range, r);
+  std::vector<char> status = check_faces(pm, r);
+  check_half_face_references(pm, r, status);
+  list_error_faces(status, r);
+  check_cells(pm, status, r);
   if (primal) {
-    check_model_entities(pm, loop_in_range, *primal, r);
+    check_model_entities(pm, status, *primal, r);
     check_volumes(*primal, volume_rel_tol, r);
   }
   return r;
+}
+
+namespace {
+
+std::string cell_name(CellId c) { return c.valid() ? "cell " + std::to_string(c.idx) : std::string("no cell"); }
+
+Defect open_cells_defect(const ValidationReport& r) {
+  Defect d{"open_cells",
+           "cells not closed (an edge of their faces not used once each way: a face missing or reversed)",
+           r.cells - r.closed_cells, {}};
+  for (CellId c : r.open_cells) {
+    const bool reversed = std::binary_search(r.misoriented_list.begin(), r.misoriented_list.end(), c);
+    d.items.push_back(cell_name(c) + (reversed ? " (a face reversed)" : ""));
+  }
+  return d;
+}
+
+Defect face_errors_defect(const ValidationReport& r) {
+  Defect d{"face_errors",
+           "faces or face lists broken (< 3 points, a repeated or unknown point, a wrong owner, neighbour or kind, "
+           "a face side listed by no cell, twice or by another cell)",
+           r.error_face_count + r.error_cell_count, {}};
+  for (FaceId f : r.error_faces) d.items.push_back("face " + std::to_string(f.idx));
+  for (CellId c : r.error_cells) d.items.push_back(cell_name(c) + " (lists a face side not its own)");
+  return d;
+}
+
+}  // namespace
+
+std::vector<Defect> ValidationReport::defects() const {
+  std::vector<Defect> out;
+  if (closed_cells != cells) out.push_back(open_cells_defect(*this));
+  if (face_errors > 0) out.push_back(face_errors_defect(*this));
+  if (!missing_model_entities.empty())
+    out.push_back({"missing_model_entities", "model entities with no dual point, edge or face on them",
+                   missing_model_entities.size(), missing_model_entities});
+  if (!volume_mismatches.empty()) {
+    Defect d{"volume_mismatches", "materials whose dual volume differs from the primal's beyond the tolerance",
+             volume_mismatches.size(), {}};
+    for (const VolumeMismatch& m : volume_mismatches) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "material %d: dual %.17g, primal %.17g (relative difference %.3g)", m.material,
+                    m.dual, m.primal, m.rel_diff);
+      d.items.push_back(buf);
+    }
+    out.push_back(std::move(d));
+  }
+  return out;
+}
+
+std::string defect_line(const Defect& d, std::size_t shown) {
+  std::string s = d.check + ": " + std::to_string(d.count) + " " + d.meaning;
+  const std::size_t n = std::min(shown, d.items.size());
+  for (std::size_t i = 0; i < n; ++i) s += (i == 0 ? ": " : ", ") + d.items[i];
+  if (d.count > n) s += (n == 0 ? ": " : ", ") + std::string("and ") + std::to_string(d.count - n) + " more";
+  return s;
+}
+
+std::string defects_sentence(const std::vector<Defect>& defects, std::size_t shown) {
+  std::string s;
+  for (const Defect& d : defects) s += (s.empty() ? "" : "; ") + defect_line(d, shown);
+  return s;
+}
+
+Json defects_json(const std::vector<Defect>& defects) {
+  Json a = Json::array();
+  for (const Defect& d : defects) {
+    Json o = Json::object();
+    o.set("check", d.check);
+    o.set("meaning", d.meaning);
+    o.set("count", d.count);
+    Json items = Json::array();
+    for (const std::string& i : d.items) items.push(i);
+    o.set("items", items);
+    a.push(o);
+  }
+  return a;
 }
 
 Json volume_mismatches_json(const std::vector<VolumeMismatch>& mismatches) {

@@ -33,6 +33,20 @@ struct VolumeMismatch {
 // [{"material", "dual", "primal", "rel_diff"}, ...]
 Json volume_mismatches_json(const std::vector<VolumeMismatch>& mismatches);
 
+// At most this many cells (faces) of each kind of defect are kept in a report.
+inline constexpr std::size_t kListedDefects = 100;
+
+// One failed check of a report, for people: what it means, how many cells,
+// faces, model entities or materials fail it and the first kListedDefects of
+// them ("cell 12", "face 7 (owner 3, neighbour 4)", "model edge 7",
+// "material 2: dual 0.5, primal 0.6").
+struct Defect {
+  std::string check;    // "open_cells", "face_errors", "missing_model_entities", "volume_mismatches"
+  std::string meaning;  // what fails, in a few words, plural ("cells not closed (...)")
+  std::size_t count = 0;
+  std::vector<std::string> items;
+};
+
 struct ValidationReport {
   std::size_t cells = 0, faces = 0, points = 0;
   std::size_t closed_cells = 0;          // every cell edge balanced (as often forward as backward)
@@ -42,13 +56,20 @@ struct ValidationReport {
   // one direction than in the other: a face loop reversed (wrongly oriented)
   // rather than a face missing. Counted in cells - closed_cells too.
   std::size_t misoriented_cells = 0;
-  std::vector<CellId> open_cells;        // not closed (first 100)
+  std::vector<CellId> open_cells;        // not closed (first kListedDefects)
+  std::vector<CellId> misoriented_list;  // misoriented (first kListedDefects)
   // Faces with < 3 points, a repeated point, a point id out of range, an owner
   // or neighbour out of range or missing, a kind that disagrees with the
   // neighbour (External iff none), or a half-face not listed exactly once by
   // its cell (once for the owner, once for a neighbour, never for none). A
   // half-face listed by the wrong cell or naming no face is counted too.
   std::size_t face_errors = 0;
+  // The faces with an error of their own or listed wrongly by the cells (a
+  // half-face missing or twice), and the cells listing a half-face that is not
+  // theirs or names no face (each the first kListedDefects, increasing).
+  std::vector<FaceId> error_faces;
+  std::vector<CellId> error_cells;
+  std::size_t error_face_count = 0, error_cell_count = 0;  // all of them
   std::size_t negative_volume_cells = 0;  // geometry, not topology: tangled cells (reported, not an error)
   std::map<std::int32_t, double> material_volume;  // sum of decomposition volumes (double)
   // With a primal: a model vertex with no dual point classified on it at its
@@ -74,8 +95,19 @@ struct ValidationReport {
   }
   // Geometry: every checked material's dual volume matches the primal's.
   bool geometry_ok() const { return volume_mismatches.empty(); }
+  // The checks that fail (ok() and geometry_ok() both true: none), in the
+  // order: open cells, face errors, missing model entities, volume mismatches.
+  std::vector<Defect> defects() const;
   Json to_json() const;
 };
+
+// One line per defect: "open_cells: 2 cells not closed (...): cell 12, cell 40"
+// with at most `shown` items, then "and N more".
+std::string defect_line(const Defect& d, std::size_t shown = 10);
+// Every defect's line joined by "; " ("" when there is none), for one error.
+std::string defects_sentence(const std::vector<Defect>& defects, std::size_t shown = 10);
+// [{"check", "meaning", "count", "items"}, ...]
+Json defects_json(const std::vector<Defect>& defects);
 
 // primal may be null: then neither model-entity representation nor volumes
 // are checked. volume_rel_tol: see kVolumeRelTol.

@@ -3,6 +3,7 @@
 // `check`, `optimize`, `convert` and the demo all report through it.
 #pragma once
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "core/json.h"
@@ -35,6 +36,22 @@ CheckResult check_mesh(const PolyMesh& mesh, const ClassifiedTetMesh* primal, bo
 // it, or split/recheck.h): the validation runs, the star test is not redone.
 // exact_fallbacks is the sum of known.cell_exact.
 CheckResult check_with_known_verdicts(const PolyMesh& mesh, const ClassifiedTetMesh* primal, CheckResult known);
+
+// --require-valid for a mesh checked on its own (`optimize`): an InputError
+// naming `source`, the validation's failed checks and the cells still
+// invalid (at most 100), unless there is neither.
+void require_valid_mesh(const CheckResult& c, const std::string& source);
+
+// `optimize --primal`: whether `primal` is the tet mesh `mesh` (read from
+// `mesh_source`) is the dual of, else an InputError naming both files:
+//  - the vertices match both ways (input numbering): every cell's primal
+//    vertex is one of the primal's, every primal vertex has a cell;
+//  - exactly (== on each coordinate): every dual point on a model vertex (class dim 0,
+//    which no stage moves) is at the primal vertex of one of its cells;
+//  - every primal vertex lies in its cells' bounding box grown by the box's
+//    own size on each side (a dual cell surrounds its vertex; a coarse test
+//    for the cells whose vertex is no dual point).
+void require_primal_of(const PolyMesh& mesh, const std::string& mesh_source, const ClassifiedTetMesh& primal);
 
 // The per-cell arrays the writers store beside the mesh ("valid", "bad_tets").
 std::vector<CellField> verdict_fields(const std::vector<CellVerdict>& verdicts);

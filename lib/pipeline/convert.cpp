@@ -382,11 +382,16 @@ void run_split(ConvertResult& r, SplitState& st, const PipelineParams& params, c
   });
 }
 
-// --require-valid: every cell still invalid, with its primal vertex (input
-// numbering) and its classification, as one InputError.
+// --require-valid: the validation's failed checks (ValidationReport::defects)
+// and every cell still invalid, with its primal vertex (input numbering) and
+// its classification, as one InputError.
 void require_valid(const ConvertResult& r) {
-  if (r.check.invalid_cells == 0) return;
-  std::string what = std::to_string(r.check.invalid_cells) + " cells remain invalid after the split:";
+  const std::vector<Defect> defects = r.check.validation.defects();
+  if (r.check.invalid_cells == 0 && defects.empty()) return;
+  std::string what;
+  if (!defects.empty()) what = "the dual is not sound: " + defects_sentence(defects) + (r.check.invalid_cells ? "; " : "");
+  if (r.check.invalid_cells == 0) throw InputError(r.primal.source(), "", what);
+  what += std::to_string(r.check.invalid_cells) + " cells remain invalid after the split:";
   const std::vector<VertexId> internal = internal_of_input(r.primal);
   for (std::size_t c = 0; c < r.check.verdicts.size(); ++c) {
     if (r.check.verdicts[c].valid) continue;

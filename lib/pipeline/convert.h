@@ -61,7 +61,11 @@ struct ConvertHooks {
 };
 
 // soup -> ConvertResult. Throws InputError for a bad mesh (naming soup.source
-// and the place) and UsageError for bad params.
+// and the place) and UsageError for bad params; with params.split.require_valid
+// also when a cell stays invalid or the validation of the result fails
+// (r.check.validation.defects(): open cells, face errors, missing model
+// entities, volume mismatches). Without it such a result is returned, its
+// defects in r.check.validation for the caller to report.
 ConvertResult convert(const TetSoup& soup, const PipelineParams& params, const ConvertHooks& hooks = {});
 
 // Writes r.mesh with its verdicts as cell data ("valid", "bad_tets") and, for

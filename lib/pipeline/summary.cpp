@@ -193,6 +193,8 @@ Json mesh_summary(const PolyMesh& pm, const CheckResult& check, const Classified
   // primal's (design §10; double sums within a relative tolerance).
   j.set("geometry_ok", rep.geometry_ok());
   j.set("volume_mismatches", volume_mismatches_json(rep.volume_mismatches));
+  // Each failed check with its cells (empty: topology and geometry ok).
+  j.set("defects", defects_json(rep.defects()));
   j.set("face_flatness", (flatness ? *flatness : flatness_stats(pm)).to_json());
   return j;
 }
@@ -213,7 +215,7 @@ Json convert_summary(const ConvertResult& r, const PipelineParams& params) {
   Json mesh = mesh_summary(r.mesh, r.check, &r.primal, r.flatness ? &*r.flatness : nullptr);
   for (const char* k : {"cells", "faces", "points", "invalid_cells", "closed_cells", "slit_cells", "face_errors",
                         "negative_volume_cells", "materials", "missing_model_entities", "topology_ok",
-                        "geometry_ok", "volume_mismatches", "invalid_by_class", "invalid_where", "face_flatness"})
+                        "geometry_ok", "volume_mismatches", "defects", "invalid_by_class", "invalid_where", "face_flatness"})
     if (const Json* v = mesh.find(k)) j.set(k, *v);
   j.set("invalid_before", r.report.invalid_before);
   j.set("invalid_after", r.report.invalid_after);

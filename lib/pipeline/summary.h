@@ -17,7 +17,7 @@ Json model_summary(const ClassifiedTetMesh& mesh);
 
 // Counts, invalid cells and where they sit (by the class of their primal
 // vertex, when the primal is known), per-material volumes, model coverage,
-// face flatness (measured here unless `flatness`, of this mesh, is given).
+// the validation's failed checks ("defects", ValidationReport::defects), face flatness (measured here unless `flatness`, of this mesh, is given).
 Json mesh_summary(const PolyMesh& mesh, const CheckResult& check, const ClassifiedTetMesh* primal,
                   const FlatnessStats* flatness = nullptr);
 

@@ -25,7 +25,8 @@ fail() { echo "interrupt_write: FAIL: $*"; status=1; }
 leftovers() { find "$work" \( -name '*.tmp.*' -o -name '*.old.*' \) -print; }
 # Listing and checksums of a tree, to compare before/after.
 tree_sum() { (cd "$1" && find . -print0 | sort -z | xargs -0 -I{} sh -c 'if [ -f "{}" ]; then md5sum "{}"; else echo "{}"; fi'); }
-# The VTU is complete when polydual reads every cell of it back.
+# The VTU is complete when polydual reads every cell of it back (and finds it
+# sound: `check` exits 1 on a mesh with defects).
 vtu_complete() { "$bin" check "$1" --json > /dev/null 2>&1; }
 # Every polyMesh file ends with OpenFOAM's footer line.
 case_complete() {
