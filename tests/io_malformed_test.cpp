@@ -58,7 +58,8 @@ const std::string kNode = "4 3 0 0\n0 0 0 0\n1 1 0 0\n2 0 1 0\n3 0 0 1\n";
 // ---- Gmsh
 TEST(IoMalformed, GarbageHeader) {
   EXPECT_THAT(msh("solid cube\nfacet normal 0 0 1\n"), HasSubstr("t.msh: line 1: not a Gmsh file: expected $MeshFormat"));
-  EXPECT_THAT(msh(""), HasSubstr("not a Gmsh file"));
+  EXPECT_THAT(msh(""), HasSubstr("t.msh: the file is empty"));
+  EXPECT_THAT(msh(" \n\n"), HasSubstr("t.msh: the file is empty"));
 }
 
 TEST(IoMalformed, UnsupportedMshVersion) {

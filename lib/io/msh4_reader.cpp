@@ -412,7 +412,7 @@ TetSoup read_msh4(TextCursor& cur, bool binary) {
   Reader r{cur, binary, {}, {}, {}, false, {}, {}, 0, false, {}, {}, 0, 0, 0, 1};
   r.soup.source = cur.source();
   bool have_nodes = false;
-  read_sections(cur, [&](std::string_view name) {
+  const std::string elements_place = read_sections(cur, [&](std::string_view name) {
     if (name == "Entities" || name == "PartitionedEntities") {
       if (have_nodes) cur.fail("$" + std::string(name) + " after $Nodes");
       if (name == "Entities") r.entities_section(); else r.partitioned_entities_section();
@@ -428,6 +428,7 @@ TetSoup read_msh4(TextCursor& cur, bool binary) {
     }
     return true;
   });
+  require_tets(r.soup, cur, elements_place);
   r.finish();
   return std::move(r.soup);
 }

@@ -72,10 +72,11 @@ void expect_end(TextCursor& cur, std::string_view name);
 // The section loop both versions share: for every "$Name" until the end of
 // the file, calls read(name), which returns false for a section it does not
 // know (skipped up to $EndName); $Nodes must come once and before the one
-// $Elements, and both must be present.
+// $Elements, and both must be present. Returns the place of $Elements.
 template <class ReadSection>
-void read_sections(TextCursor& cur, ReadSection&& read) {
+std::string read_sections(TextCursor& cur, ReadSection&& read) {
   bool have_nodes = false, have_elements = false;
+  std::string elements_place;
   while (!cur.at_end()) {
     std::string_view name = cur.token("section name");
     if (name.size() < 2 || name[0] != '$') cur.fail("expected a section such as $Nodes, got '" + quoted(name) + "'");
@@ -87,12 +88,19 @@ void read_sections(TextCursor& cur, ReadSection&& read) {
       if (!have_nodes) cur.fail("$Elements before $Nodes");
       if (have_elements) cur.fail("second $Elements section");
       have_elements = true;
+      elements_place = cur.is_binary() ? "byte " + std::to_string(cur.offset() - name.size() - 1) : cur.line_place();
     }
     if (!read(name)) skip_section(cur, name);
   }
   if (!have_nodes) throw InputError(cur.source(), "end of file", "missing $Nodes section");
   if (!have_elements) throw InputError(cur.source(), "end of file", "missing $Elements section");
+  return elements_place;
 }
+
+// A file whose sections are present but hold no tet is empty as a tet mesh
+// (a surface mesh, or $Nodes and $Elements with no records): an error at
+// `elements_place`, before anything is dropped as unattached.
+void require_tets(const TetSoup& soup, const TextCursor& cur, const std::string& elements_place);
 
 // Section loops after $MeshFormat (the cursor stands after $EndMeshFormat).
 TetSoup read_msh2(TextCursor& cur, bool binary);
