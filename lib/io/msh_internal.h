@@ -2,6 +2,9 @@
 #pragma once
 #include <algorithm>
 #include <cstdint>
+#include <cstdlib>
+#include <memory>
+#include <new>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -18,35 +21,44 @@ namespace polydual::io::msh {
 // lookup; the elements' ~4 lookups per tet dominated the reading of large
 // files with a hash map); any other tag (sparse numbering, a negative msh 2.2
 // id seen as a huge unsigned) goes to a hash map. Same answers either way.
+// The array is calloc'ed and holds index + 1 (0: no node), so its pages
+// become resident only where tags are stored: a header that announces many
+// nodes costs address space, not memory, until the nodes are there.
 class NodeTags {
  public:
   static constexpr std::uint32_t kNone = 0xffffffffu;
   // Room for `count` nodes, tags below min(max_tag, 4 * count + 1024) + 1
   // held densely (at most ~16 bytes per node).
   void reserve(std::uint64_t count, std::uint64_t max_tag) {
-    const std::uint64_t bound = std::min<std::uint64_t>(max_tag, 4 * count + 1024);
-    dense_.assign(bound + 1, kNone);
+    const std::uint64_t bound = std::min<std::uint64_t>(max_tag, 4 * count + 1024) + 1;
+    dense_.reset(static_cast<std::uint32_t*>(std::calloc(bound, sizeof(std::uint32_t))));
+    if (!dense_) throw std::bad_alloc();
+    size_ = bound;
   }
   // Records tag -> at; returns kNone when the tag is new, else the index it
   // already had (which is kept).
   std::uint32_t insert(std::uint64_t tag, std::uint32_t at) {
-    if (tag < dense_.size()) {
+    if (tag < size_) {
       const std::uint32_t had = dense_[tag];
-      if (had == kNone) dense_[tag] = at;
-      return had;
+      if (had == 0) dense_[tag] = at + 1;
+      return had - 1;  // kNone for 0
     }
     const auto [it, fresh] = sparse_.emplace(tag, at);
     return fresh ? kNone : it->second;
   }
   // The index of tag, or kNone.
   std::uint32_t find(std::uint64_t tag) const {
-    if (tag < dense_.size()) return dense_[tag];
+    if (tag < size_) return dense_[tag] - 1;
     const auto it = sparse_.find(tag);
     return it == sparse_.end() ? kNone : it->second;
   }
 
  private:
-  std::vector<std::uint32_t> dense_;
+  struct Free {
+    void operator()(std::uint32_t* p) const { std::free(p); }
+  };
+  std::unique_ptr<std::uint32_t[], Free> dense_;
+  std::uint64_t size_ = 0;
   std::unordered_map<std::uint64_t, std::uint32_t> sparse_;
 };
 
