@@ -83,13 +83,13 @@ std::string_view TextCursor::token(const char* what) {
   skip_blanks();
   token_line_ = line_;
   if (!have(pos_)) fail(std::string("file ends while reading ") + what);
-  if (bytes_[pos_] == '\0') fail_nul();
   const std::size_t start = pos_;
   do {
     const char* d = bytes_.data();
     const std::size_t n = bytes_.size();
     while (pos_ < n && !kEndsToken[static_cast<unsigned char>(d[pos_])] && d[pos_] != comment_) ++pos_;
   } while (pos_ == bytes_.size() && file_ && load(pos_ + 1));
+  if (pos_ < bytes_.size() && bytes_[pos_] == '\0') fail_nul();  // "Tet\0ahedra" is no keyword "Tet"
   return bytes_.substr(start, pos_ - start);
 }
 

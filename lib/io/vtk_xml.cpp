@@ -99,6 +99,7 @@ void VtkXml::fail_at(const std::string& place, const std::string& what) const {
 
 // The element tree: every start tag becomes an Element, end tags must match.
 void VtkXml::scan() {
+  check_text(source_, bytes_, 0);  // load_vtk_xml checked a file as it loaded; buffers arrive unchecked
   std::vector<int> stack;
   std::size_t pos = 0;
   while (true) {
