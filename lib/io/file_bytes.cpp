@@ -1,13 +1,13 @@
 #include "io/file_bytes.h"
 
 #include <fcntl.h>
-#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <new>
 
 #include "core/error.h"
 #include "core/file_type.h"
@@ -82,20 +82,17 @@ void require_regular_file(const std::string& path) {
 
 InputFile::InputFile(const std::string& path) : path_(path) {
   fd_ = open_regular(path, size_);
-  if (size_ == 0) return;
-  // Address space for the whole file, but pages only where loaded (so the
-  // resident memory follows what the reader consumed, not what the file's
-  // size claims); MAP_NORESERVE: no swap is reserved for untouched pages.
-  void* p = ::mmap(nullptr, size_, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
-  if (p == MAP_FAILED) {
+  // Uninitialised: its pages become resident only as they are loaded, so the
+  // memory follows what the reader consumed, not what the file's size claims.
+  storage_.reset(new (std::nothrow) char[std::max<std::uint64_t>(size_, 1)]);
+  if (!storage_) {
     ::close(fd_);
-    refuse(path, "file of " + std::to_string(size_) + " bytes is too large to read (" + errno_text(errno) + ")");
+    refuse(path, "file of " + std::to_string(size_) + " bytes is too large to read");
   }
-  data_ = static_cast<char*>(p);
+  data_ = storage_.get();
 }
 
 InputFile::~InputFile() {
-  if (data_) ::munmap(data_, size_);
   if (fd_ >= 0) ::close(fd_);
 }
 

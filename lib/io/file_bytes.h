@@ -4,13 +4,14 @@
 //   - only regular files (a link to one is followed): a directory, FIFO,
 //     device, socket or dangling link is refused with its own reason, and
 //     opening never blocks (a FIFO without a writer is refused, not waited on);
-//   - InputFile loads a file on demand, in chunks, into storage reserved once
-//     for its size: a reader that stops at a bad header or a NUL byte has read
-//     (and made resident) little more than what it looked at, however large
-//     the file claims to be.
+//   - InputFile loads a file on demand, in chunks, into storage allocated
+//     once for its size and left untouched: a reader that stops at a bad
+//     header or a NUL byte has read (and made resident) little more than what
+//     it looked at, however large the file claims to be.
 #pragma once
 #include <cstdint>
 #include <string>
+#include <memory>
 #include <string_view>
 
 namespace polydual::io {
@@ -51,7 +52,8 @@ class InputFile {
   std::string path_;
   int fd_ = -1;
   std::uint64_t size_ = 0;
-  char* data_ = nullptr;  // an anonymous mapping of size_ bytes, touched only where loaded
+  std::unique_ptr<char[]> storage_;  // size_ bytes, resident only where loaded
+  char* data_ = nullptr;
   std::size_t loaded_ = 0;
   bool checked_end_ = false;
 };

@@ -2,9 +2,6 @@
 #pragma once
 #include <algorithm>
 #include <cstdint>
-#include <cstdlib>
-#include <memory>
-#include <new>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -21,44 +18,49 @@ namespace polydual::io::msh {
 // lookup; the elements' ~4 lookups per tet dominated the reading of large
 // files with a hash map); any other tag (sparse numbering, a negative msh 2.2
 // id seen as a huge unsigned) goes to a hash map. Same answers either way.
-// The array is calloc'ed and holds index + 1 (0: no node), so its pages
-// become resident only where tags are stored: a header that announces many
-// nodes costs address space, not memory, until the nodes are there.
+// The array grows with the nodes inserted (to at most 4 slots per node read
+// plus 1024), so a header that announces many nodes, or one huge tag, costs
+// nothing until nodes back it; a tag stored in the map before the array grew
+// past it is still found there.
 class NodeTags {
  public:
   static constexpr std::uint32_t kNone = 0xffffffffu;
-  // Room for `count` nodes, tags below min(max_tag, 4 * count + 1024) + 1
-  // held densely (at most ~16 bytes per node).
+  // Tags below min(max_tag, 4 * count + 1024) + 1 may be held densely.
   void reserve(std::uint64_t count, std::uint64_t max_tag) {
-    const std::uint64_t bound = std::min<std::uint64_t>(max_tag, 4 * count + 1024) + 1;
-    dense_.reset(static_cast<std::uint32_t*>(std::calloc(bound, sizeof(std::uint32_t))));
-    if (!dense_) throw std::bad_alloc();
-    size_ = bound;
+    bound_ = std::min<std::uint64_t>(max_tag, 4 * count + 1024) + 1;
   }
   // Records tag -> at; returns kNone when the tag is new, else the index it
   // already had (which is kept).
   std::uint32_t insert(std::uint64_t tag, std::uint32_t at) {
-    if (tag < size_) {
-      const std::uint32_t had = dense_[tag];
-      if (had == 0) dense_[tag] = at + 1;
-      return had - 1;  // kNone for 0
+    ++inserted_;
+    if (tag >= dense_.size() && tag < std::min(bound_, 4 * inserted_ + 1024)) grow(tag);
+    if (tag < dense_.size()) {
+      std::uint32_t& slot = dense_[tag];
+      if (slot != kNone) return slot;
+      if (const std::uint32_t had = find_sparse(tag); had != kNone) return had;
+      slot = at;
+      return kNone;
     }
     const auto [it, fresh] = sparse_.emplace(tag, at);
     return fresh ? kNone : it->second;
   }
   // The index of tag, or kNone.
   std::uint32_t find(std::uint64_t tag) const {
-    if (tag < size_) return dense_[tag] - 1;
-    const auto it = sparse_.find(tag);
-    return it == sparse_.end() ? kNone : it->second;
+    if (tag < dense_.size() && dense_[tag] != kNone) return dense_[tag];
+    return find_sparse(tag);
   }
 
  private:
-  struct Free {
-    void operator()(std::uint32_t* p) const { std::free(p); }
-  };
-  std::unique_ptr<std::uint32_t[], Free> dense_;
-  std::uint64_t size_ = 0;
+  void grow(std::uint64_t tag) {
+    dense_.resize(std::min<std::uint64_t>(bound_, std::max<std::uint64_t>(tag + 1, 2 * dense_.size())), kNone);
+  }
+  std::uint32_t find_sparse(std::uint64_t tag) const {
+    if (sparse_.empty()) return kNone;
+    const auto it = sparse_.find(tag);
+    return it == sparse_.end() ? kNone : it->second;
+  }
+  std::vector<std::uint32_t> dense_;
+  std::uint64_t bound_ = 0, inserted_ = 0;
   std::unordered_map<std::uint64_t, std::uint32_t> sparse_;
 };
 
