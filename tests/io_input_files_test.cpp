@@ -224,6 +224,23 @@ TEST_F(InputFiles, ValidHeaderThenZerosIsRefusedAtTheZeros) {
   expect_quick_refusal(read_in_child(sparse("p.mesh", mesh.substr(0, mesh.find("Tetrahedra")))), "p.mesh: line ");
 }
 
+// Counts that a 2 GB file could hold, then the hole: what the header
+// announces costs address space, not memory, until records are read.
+TEST_F(InputFiles, HeaderAnnouncingManyRecordsThenZerosCostsNoMemory) {
+  const std::string nul = "NUL byte where text was expected";
+  expect_quick_refusal(read_in_child(sparse("m.msh", "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n"
+                                                     "1 200000000 1 200000000\n3 1 0 200000000\n")),
+                       "m.msh: line 7: " + nul);
+  auto bytes = [](auto v) { return std::string(reinterpret_cast<const char*>(&v), sizeof v); };
+  std::string bin = "$MeshFormat\n4.1 1 8\n" + bytes(std::int32_t(1)) + "\n$EndMeshFormat\n$Nodes\n";
+  for (std::uint64_t n : {1, 60000000, 1, 60000000}) bin += bytes(n);
+  bin += bytes(std::int32_t(3)) + bytes(std::int32_t(1)) + bytes(std::int32_t(0)) + bytes(std::uint64_t(60000000));
+  expect_quick_refusal(read_in_child(sparse("mb.msh", bin)), "mb.msh: byte " + std::to_string(bin.size() + 16) +
+                                                                 ": node tag 0 defined twice");
+  expect_quick_refusal(read_in_child(sparse("m.mesh", "MeshVersionFormatted 2\nDimension 3\nVertices\n200000000\n")),
+                       "m.mesh: line 5: " + nul);
+}
+
 TEST_F(InputFiles, VtuWithRawAppendedDataThenZerosIsRefusedFromItsEnd) {
   // NUL bytes are legitimate in raw appended data: the file's last bytes tell.
   const std::string raw = slurp(kData + "/cube5_vtk_appended_raw.vtu");
