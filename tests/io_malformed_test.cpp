@@ -54,11 +54,13 @@ const std::string kMsh2Nodes = "$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n$
 const std::string kMsh4Head = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
 const std::string kMeditHead = "MeshVersionFormatted 2\nDimension 3\nVertices\n4\n0 0 0 0\n1 0 0 0\n0 1 0 0\n0 0 1 0\n";
 const std::string kNode = "4 3 0 0\n0 0 0 0\n1 1 0 0\n2 0 1 0\n3 0 0 1\n";
+const std::string kVtuHeadForNul = "<VTKFile type=\"UnstructuredGrid\"><UnstructuredGrid>\n";
 
 // ---- Gmsh
 TEST(IoMalformed, GarbageHeader) {
   EXPECT_THAT(msh("solid cube\nfacet normal 0 0 1\n"), HasSubstr("t.msh: line 1: not a Gmsh file: expected $MeshFormat"));
-  EXPECT_THAT(msh(""), HasSubstr("not a Gmsh file"));
+  EXPECT_THAT(msh(""), HasSubstr("t.msh: the file is empty"));
+  EXPECT_THAT(msh(" \n\n"), HasSubstr("t.msh: the file is empty"));
 }
 
 TEST(IoMalformed, UnsupportedMshVersion) {
@@ -140,6 +142,24 @@ TEST(IoMalformed, Msh4VolumeMissingFromEntities) {
               HasSubstr("line 22: entity (3, 5) is not in $Entities"));
 }
 
+TEST(IoMalformed, Msh4BoundingEntityNotInEntities) {
+  // Curve 1 from point 1 to point -2 (Gmsh signs the end point), point 2 missing.
+  EXPECT_THAT(msh(kMsh4Head + "$Entities\n1 1 0 0\n1 0 0 0 0\n1 0 0 0 1 0 0 0 2 1 -2\n$EndEntities\n"),
+              HasSubstr("t.msh: line 7: curve 1 is bounded by point -2, which is not in $Entities (no point 2"));
+  EXPECT_THAT(msh(kMsh4Head + "$Entities\n0 0 1 1\n5 0 0 0 1 1 1 0 0\n9 0 0 0 1 1 1 0 1 6\n$EndEntities\n"),
+              HasSubstr("line 7: volume 9 is bounded by surface 6, which is not in $Entities"));
+  // Binary: counts as size_t, tags as int.
+  auto bytes = [](auto v) { return std::string(reinterpret_cast<const char*>(&v), sizeof v); };
+  std::string bin = "$MeshFormat\n4.1 1 8\n" + bytes(std::int32_t(1)) + "\n$EndMeshFormat\n$Entities\n";
+  for (std::uint64_t n : {1, 1, 0, 0}) bin += bytes(n);
+  bin += bytes(std::int32_t(1)) + std::string(24, '\0') + bytes(std::uint64_t(0));  // point 1
+  bin += bytes(std::int32_t(1)) + std::string(48, '\0') + bytes(std::uint64_t(0)) + bytes(std::uint64_t(2)) +
+         bytes(std::int32_t(1)) + bytes(std::int32_t(-4));  // curve 1 from 1 to -4
+  const std::size_t after = bin.size();
+  EXPECT_THAT(msh(bin + "\n$EndEntities\n"),
+              HasSubstr("t.msh: byte " + std::to_string(after) + ": curve 1 is bounded by point -4"));
+}
+
 TEST(IoMalformed, Msh4ParametricNodes) {
   EXPECT_THAT(msh(kMsh4Head + "$Nodes\n1 1 1 1\n2 1 1 1\n1\n0 0 0 0.5 0.5\n$EndNodes\n"),
               HasSubstr("line 6: parametric nodes are not supported"));
@@ -185,6 +205,31 @@ TEST(IoMalformed, BinaryElementBlockLargerThanCount) {
   EXPECT_THAT(msh(bytes), HasSubstr("element block of 40 elements does not fit the 21 elements left"));
 }
 
+TEST(IoMalformed, MshWithoutTetsIsEmpty) {
+  EXPECT_THAT(msh(kMsh2Head + kMsh2Nodes + "$Elements\n0\n$EndElements\n"),
+              HasSubstr("t.msh: line 11: the file holds no tetrahedra ($Elements has none)"));
+  EXPECT_THAT(msh(kMsh2Head + kMsh2Nodes + "$Elements\n1\n1 2 2 1 1 1 2 3\n$EndElements\n"),
+              HasSubstr("line 11: the file holds no tetrahedra ($Elements has none, only 1 triangle, line or point)"));
+  EXPECT_THAT(msh(kMsh4Head + "$Nodes\n0 0 0 0\n$EndNodes\n$Elements\n0 0 0 0\n$EndElements\n"),
+              HasSubstr("line 7: the file holds no tetrahedra"));
+  EXPECT_THAT(msh(kMsh2Head + "$Elements\n0\n$EndElements\n"), HasSubstr("$Elements before $Nodes"));
+  EXPECT_THAT(msh(kMsh2Head), HasSubstr("end of file: missing $Nodes section"));
+}
+
+// ---- NUL bytes where text is expected, in every text format
+TEST(IoMalformed, NulByteInText) {
+  using namespace std::string_literals;  // the inputs hold NUL bytes
+  const std::string nul = "NUL byte where text was expected";
+  EXPECT_THAT(msh(kMsh2Head + "$Nodes\n2\n1 0 0 0\n2 1 0\0 0\n$EndNodes\n"s), HasSubstr("t.msh: line 7: " + nul));
+  EXPECT_THAT(msh(kMsh2Head + "$Comments\n\0\0\0"s), HasSubstr("section $Comments is not closed"));
+  EXPECT_THAT(msh(kMsh2Head + "$PhysicalNames\n1\n3 1 \"a\0b\"\n"s), HasSubstr("t.msh: line 6: " + nul));
+  EXPECT_THAT(medit(kMeditHead + "Tetra\0hedra\n1\n1 2 3 4 1\n"s), HasSubstr("t.mesh: line 9: " + nul));
+  EXPECT_THAT(medit("# comment\0\nDimension 3\n"s), HasSubstr("t.mesh: line 1: " + nul));
+  EXPECT_THAT(tetgen(kNode, "1 4 0\n0 0 1 2\0 3\n"s), HasSubstr("t.ele: line 2: " + nul));
+  EXPECT_THAT(tetgen(kNode, "1 4 0\n0 0 1 2 3\n", "1 1\n0 0 1 2 5 \0\n"s), HasSubstr("t.face: line 2: " + nul));
+  EXPECT_THAT(vtu(kVtuHeadForNul + "<Piece NumberOfPoints=\"1\"\0"s), HasSubstr("t.vtu: line 2: " + nul));
+}
+
 // ---- Medit
 TEST(IoMalformed, MeditVertexIndexOutOfRange) {
   EXPECT_THAT(medit(kMeditHead + "Tetrahedra\n1\n1 2 3 99 1\nEnd\n"),
@@ -202,6 +247,15 @@ TEST(IoMalformed, MeditUnknownKeywordAndDimension) {
   EXPECT_THAT(medit("MeshVersionFormatted 2\nDimension 2\n"), HasSubstr("line 2: Dimension 2 not supported"));
   EXPECT_THAT(medit(kMeditHead + "Hexahedra\n0\n"), HasSubstr("unsupported element kind Hexahedra"));
   EXPECT_THAT(medit(kMeditHead + "End\n"), HasSubstr("missing Tetrahedra section"));
+}
+
+TEST(IoMalformed, MeditEmptyOrWithoutTets) {
+  EXPECT_THAT(medit(""), HasSubstr("t.mesh: the file is empty"));
+  EXPECT_THAT(medit("# only a comment\n\n"), HasSubstr("t.mesh: the file is empty"));
+  EXPECT_THAT(medit("MeshVersionFormatted 2\nDimension 3\nVertices\n0\nTetrahedra\n0\nEnd\n"),
+              HasSubstr("t.mesh: line 5: the file holds no tetrahedra (its Tetrahedra section is empty)"));
+  EXPECT_THAT(medit("MeshVersionFormatted 2\nDimension 3\nTetrahedra\n0\n"), HasSubstr("missing Vertices section"));
+  EXPECT_THAT(medit(kMeditHead + "Vertices\n0\n"), HasSubstr("line 9: second Vertices section"));
 }
 
 TEST(IoMalformed, TriangleWithRepeatedVertex) {
@@ -223,6 +277,13 @@ TEST(IoMalformed, TetGenIndexOutOfRangeAndSequence) {
 TEST(IoMalformed, TetGenSecondOrderAndRegionNotInteger) {
   EXPECT_THAT(tetgen(kNode, "1 10 0\n"), HasSubstr("t.ele: line 1: tetrahedra with 10 nodes not supported"));
   EXPECT_THAT(tetgen(kNode, "1 4 1\n0 0 1 2 3 1.5\n"), HasSubstr("line 2: region attribute is not an integer"));
+}
+
+TEST(IoMalformed, TetGenEmpty) {
+  EXPECT_THAT(tetgen("", "1 4 0\n0 0 1 2 3\n"), HasSubstr("t.node: the file is empty"));
+  EXPECT_THAT(tetgen("0 3 0 0\n", "1 4 0\n0 0 1 2 3\n"), HasSubstr("t.node: line 1: the file holds no nodes"));
+  EXPECT_THAT(tetgen(kNode, "0 4 0\n"), HasSubstr("t.ele: line 1: the file holds no tetrahedra (its count is 0)"));
+  EXPECT_THAT(tetgen(kNode, "# nothing\n"), HasSubstr("t.ele: the file is empty"));
 }
 
 TEST(IoMalformed, TetGenCountsDisagree) {
@@ -255,6 +316,18 @@ TEST(IoMalformed, VtuCellTypeAndIndex) {
   EXPECT_THAT(vtu(vtu_piece("0 1 2 4", "10")), HasSubstr("line 3: cell 0: node index 4 out of range (0..3)"));
   EXPECT_THAT(vtu(vtu_piece("0 1 2 3", "10", R"(<CellData><DataArray type="Int32" Name="region">1 2</DataArray></CellData>)")),
               HasSubstr("region array 'region' has 2 values for 1 cells"));
+}
+
+TEST(IoMalformed, VtuEmptyOrWithoutTets) {
+  EXPECT_THAT(vtu(" \n"), HasSubstr("t.vtu: the file is empty"));
+  std::string triangle = vtu_piece("0 1 2", "5");
+  triangle.replace(triangle.find("offsets\">4<"), 11, "offsets\">3<");
+  EXPECT_THAT(vtu(triangle), HasSubstr("line 1: the file holds no tetrahedra (none of its 1 cells is a tetra)"));
+  EXPECT_THAT(vtu(kVtuHead + R"(<Piece NumberOfPoints="0" NumberOfCells="0"><Points><DataArray type="Float64" )" +
+                  R"(NumberOfComponents="3"></DataArray></Points><Cells><DataArray type="Int32" Name="connectivity">)" +
+                  R"(</DataArray><DataArray type="Int32" Name="offsets"></DataArray><DataArray type="UInt8" )" +
+                  R"(Name="types"></DataArray></Cells></Piece></UnstructuredGrid></VTKFile>)"),
+              HasSubstr("the file holds no tetrahedra (NumberOfCells is 0)"));
 }
 
 TEST(IoMalformed, VtuBinarySizeMismatchAndTruncation) {

@@ -112,6 +112,26 @@ std::string msh41_one_tet(const std::array<std::string, 4>& tags, const std::str
   return f;
 }
 
+// The tag array grows with the nodes read: tag 5000, first of 1302 nodes, is
+// kept in the map; tag 5001, last, grows the array past 5000, whose slot
+// stays empty: 5000 must still be found (and a second 5000 refused).
+TEST(IoReaders, MshNodeTagKeptInTheMapBeforeTheArrayGrewPastIt) {
+  auto file = [](const std::string& last) {
+    std::string f = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n1302\n5000 0 0 1\n";
+    for (int i = 1; i <= 1300; ++i) f += std::to_string(i) + " " + std::to_string(i) + " 0 0\n";
+    return f + last + " 0 1 0\n$EndNodes\n$Elements\n1\n1 4 2 1 1 5000 1 2 5001\n$EndElements\n";
+  };
+  const TetSoup s = read_msh(file("5001"), "t.msh");
+  ASSERT_EQ(s.tets.size(), 1u);
+  EXPECT_EQ(s.tets[0], (std::array<std::uint32_t, 4>{0, 1, 2, 1301}));
+  try {
+    read_msh(file("5000"), "t.msh");
+    ADD_FAILURE() << "no error for a repeated tag";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), testing::HasSubstr("line 1307: node 5000 defined twice"));
+  }
+}
+
 TEST(IoReaders, MshSparseAndHugeNodeTags) {
   const TetSoup s = read_msh(msh41_one_tet({"7", "1000000000", "3", "1099511627776"}, "1000000000 3 1099511627776 7"), "t.msh");
   ASSERT_EQ(s.tets.size(), 1u);

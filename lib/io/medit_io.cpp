@@ -109,6 +109,8 @@ void merge_two_sided_triangles(TetSoup& soup) {
 struct Reader {
   io::TextCursor cur;
   TetSoup soup;
+  bool have_dimension = false;
+  std::size_t vertices_line = 0, tetrahedra_line = 0;  // 0: no such section (yet)
 
   std::uint32_t vertex() {
     const std::int64_t n = static_cast<std::int64_t>(soup.points.size());
@@ -125,71 +127,95 @@ struct Reader {
     return n;
   }
 
-  TetSoup read() {
-    bool have_dimension = false;
-    while (!cur.at_end()) {
-      const std::string_view word = cur.token("keyword");
-      const std::string kw = lower(word);
-      if (kw == "end") break;
-      if (kw == "meshversionformatted") {
-        cur.integer_in("version", 1, 4);
-      } else if (kw == "dimension") {
-        const std::int64_t d = cur.integer("dimension");
-        if (d != 3) cur.fail("Dimension " + std::to_string(d) + " not supported (only 3)");
-        have_dimension = true;
-      } else if (kw == "vertices") {
-        if (!soup.points.empty()) cur.fail("second Vertices section");
-        const std::int64_t n = count("Vertices", 8);
-        soup.points.reserve(n);
-        for (std::int64_t i = 0; i < n; ++i) {
-          Point3 p;
-          for (int k = 0; k < 3; ++k) p[k] = cur.real("coordinate");
-          cur.integer("vertex reference");
-          soup.points.push_back(p);
-        }
-      } else if (kw == "tetrahedra") {
-        const std::int64_t n = count("Tetrahedra", 10);
-        for (std::int64_t i = 0; i < n; ++i) {
-          std::array<std::uint32_t, 4> t{};
-          for (auto& v : t) v = vertex();
-          soup.tets.push_back(t);
-          soup.tet_region.push_back(ref());
-        }
-      } else if (kw == "triangles") {
-        const std::int64_t n = count("Triangles", 8);
-        for (std::int64_t i = 0; i < n; ++i) {
-          TaggedTriangle t;
-          for (auto& v : t.v) v = vertex();
-          if (const std::string bad = io::repeated_vertex(t.v, "triangle"); !bad.empty()) cur.fail(bad);
-          t.tag = ref();
-          soup.triangles.push_back(t);
-        }
-      } else if (kw == "edges") {
-        const std::int64_t n = count("Edges", 6);
-        for (std::int64_t i = 0; i < n; ++i) {
-          TaggedEdge e;
-          for (auto& v : e.v) v = vertex();  // degenerate edges are dropped by drop_unattached
-          e.tag = ref();
-          soup.edges.push_back(e);
-        }
-      } else if (kw == "corners") {
-        const std::int64_t n = count("Corners", 2);
-        for (std::int64_t i = 0; i < n; ++i) {
-          const std::uint32_t v = vertex();
-          soup.corners.push_back({v, static_cast<std::int32_t>(v + 1)});
-        }
-      } else if (const int size = skipped_record_size(kw); size > 0) {
-        const std::int64_t n = count(std::string(word).c_str(), 2 * size);
-        for (std::int64_t i = 0; i < n * size; ++i) cur.real("value");
-      } else if (is_unsupported_volume(kw)) {
-        cur.fail("unsupported element kind " + std::string(word) + " (only linear tetrahedra)");
-      } else {
-        cur.fail("unknown keyword '" + io::quoted(word) + "'");
+  // One keyword's section; false for End.
+  bool section(std::string_view word) {
+    const std::string kw = lower(word);
+    if (kw == "end") return false;
+    if (kw == "meshversionformatted") {
+      cur.integer_in("version", 1, 4);
+    } else if (kw == "dimension") {
+      const std::int64_t d = cur.integer("dimension");
+      if (d != 3) cur.fail("Dimension " + std::to_string(d) + " not supported (only 3)");
+      have_dimension = true;
+    } else if (kw == "vertices") {
+      if (vertices_line) cur.fail("second Vertices section");
+      vertices_line = cur.line();
+      vertices();
+    } else if (kw == "tetrahedra") {
+      if (!tetrahedra_line) tetrahedra_line = cur.line();
+      tetrahedra();
+    } else if (kw == "triangles") {
+      triangles();
+    } else if (kw == "edges") {
+      edges();
+    } else if (kw == "corners") {
+      const std::int64_t n = count("Corners", 2);
+      for (std::int64_t i = 0; i < n; ++i) {
+        const std::uint32_t v = vertex();
+        soup.corners.push_back({v, static_cast<std::int32_t>(v + 1)});
       }
+    } else if (const int size = skipped_record_size(kw); size > 0) {
+      const std::int64_t n = count(std::string(word).c_str(), 2 * size);
+      for (std::int64_t i = 0; i < n * size; ++i) cur.real("value");
+    } else if (is_unsupported_volume(kw)) {
+      cur.fail("unsupported element kind " + std::string(word) + " (only linear tetrahedra)");
+    } else {
+      cur.fail("unknown keyword '" + io::quoted(word) + "'");
     }
+    return true;
+  }
+
+  void vertices() {
+    const std::int64_t n = count("Vertices", 8);
+    soup.points.reserve(n);
+    for (std::int64_t i = 0; i < n; ++i) {
+      Point3 p;
+      for (int k = 0; k < 3; ++k) p[k] = cur.real("coordinate");
+      cur.integer("vertex reference");
+      soup.points.push_back(p);
+    }
+  }
+  void tetrahedra() {
+    const std::int64_t n = count("Tetrahedra", 10);
+    for (std::int64_t i = 0; i < n; ++i) {
+      std::array<std::uint32_t, 4> t{};
+      for (auto& v : t) v = vertex();
+      soup.tets.push_back(t);
+      soup.tet_region.push_back(ref());
+    }
+  }
+  void triangles() {
+    const std::int64_t n = count("Triangles", 8);
+    for (std::int64_t i = 0; i < n; ++i) {
+      TaggedTriangle t;
+      for (auto& v : t.v) v = vertex();
+      if (const std::string bad = io::repeated_vertex(t.v, "triangle"); !bad.empty()) cur.fail(bad);
+      t.tag = ref();
+      soup.triangles.push_back(t);
+    }
+  }
+  void edges() {
+    const std::int64_t n = count("Edges", 6);
+    for (std::int64_t i = 0; i < n; ++i) {
+      TaggedEdge e;
+      for (auto& v : e.v) v = vertex();  // degenerate edges are dropped by drop_unattached
+      e.tag = ref();
+      soup.edges.push_back(e);
+    }
+  }
+
+  TetSoup read() {
+    if (cur.at_end()) throw InputError(cur.source(), "", "the file is empty");
+    while (!cur.at_end() && section(cur.token("keyword"))) {
+    }
+    // A section that is absent is missing; one that is present but empty
+    // leaves the file without a mesh.
     if (!have_dimension) throw InputError(cur.source(), "end of file", "missing 'Dimension 3'");
-    if (soup.points.empty()) throw InputError(cur.source(), "end of file", "missing Vertices section");
-    if (soup.tets.empty()) throw InputError(cur.source(), "end of file", "missing Tetrahedra section");
+    if (!vertices_line) throw InputError(cur.source(), "end of file", "missing Vertices section");
+    if (!tetrahedra_line) throw InputError(cur.source(), "end of file", "missing Tetrahedra section");
+    if (soup.tets.empty())
+      throw InputError(cur.source(), "line " + std::to_string(tetrahedra_line),
+                       "the file holds no tetrahedra (its Tetrahedra section is empty)");
     soup.source = cur.source();
     merge_two_sided_triangles(soup);
     io::drop_unattached(soup);
@@ -204,7 +230,11 @@ TetSoup read_medit(std::string_view bytes, const std::string& source) {
   return r.read();
 }
 
-TetSoup read_medit_file(const std::string& path) { return read_medit(io::read_file_bytes(path), path); }
+TetSoup read_medit_file(const std::string& path) {
+  io::InputFile file(path);
+  Reader r{io::TextCursor(file, '#'), {}};
+  return r.read();
+}
 
 void write_medit(const TetSoup& soup, const std::string& path) {
   write_file_atomically(path, [&](std::ostream& out) {

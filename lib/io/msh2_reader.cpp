@@ -186,13 +186,14 @@ struct Reader {
 TetSoup read_msh2(TextCursor& cur, bool binary) {
   Reader r{cur, binary, {}, {}, {}, {}, {}, 1};
   r.soup.source = cur.source();
-  read_sections(cur, [&](std::string_view name) {
+  const std::string elements_place = read_sections(cur, [&](std::string_view name) {
     if (name == "Nodes") r.nodes();
     else if (name == "Elements") r.elements();
     else if (name == "PhysicalNames") r.physical_names();
     else return false;
     return true;
   });
+  require_tets(r.soup, cur, elements_place);
   r.finish();
   return std::move(r.soup);
 }

@@ -92,11 +92,23 @@ struct Reader {
     for (auto& p : tags) p = int_field("physical tag");
     return tags;
   }
-  // "numBounding tag..." of a curve, surface or volume record (tags unused).
-  void bounding_entities() {
+  // "numBounding tag..." of a curve, surface or volume record: tags of
+  // entities of dimension d - 1, signed by orientation (a curve's end point
+  // is negative). In $Entities (`check`) each must be declared there, and
+  // is, since points come first, then curves, then surfaces; partition pieces
+  // are bounded by other pieces and are not checked. The tags are not used.
+  void bounding_entities(int d, std::int32_t t, bool check) {
+    static constexpr const char* kDim[] = {"point", "curve", "surface", "volume"};
     const std::int64_t n = count("the number of bounding entities", 1 << 24);
     cur.check_count(n, binary ? 4 : 2, "bounding entity");
-    for (std::int64_t k = 0; k < n; ++k) int_field("bounding entity tag");
+    for (std::int64_t k = 0; k < n; ++k) {
+      const std::int64_t b = int_field("bounding entity tag");
+      const std::int64_t a = b < 0 ? -b : b;
+      if (check && (a > kInt32Max || !entities[d - 1].count(static_cast<std::int32_t>(a))))
+        fail(std::string(kDim[d]) + " " + std::to_string(t) + " is bounded by " + kDim[d - 1] + " " +
+             std::to_string(b) + ", which is not in $Entities (no " + kDim[d - 1] + " " + std::to_string(a) +
+             " is declared)");
+    }
   }
   std::array<double, 6> box(int d, const char* what) {
     std::array<double, 6> b{};
@@ -122,7 +134,7 @@ struct Reader {
         Entity e;
         e.box = box(d, "the $Entities block");
         e.physicals = physical_tags();
-        if (d > 0) bounding_entities();
+        if (d > 0) bounding_entities(d, t, true);
         if (!entities[d].emplace(t, std::move(e)).second)
           fail("entity (" + std::to_string(d) + ", " + std::to_string(t) + ") defined twice in $Entities");
       }
@@ -158,7 +170,7 @@ struct Reader {
         for (std::int64_t k = 0; k < np; ++k) int_field("partition tag");
         box(d, "the $PartitionedEntities block");
         p.physicals = physical_tags();
-        if (d > 0) bounding_entities();
+        if (d > 0) bounding_entities(d, t, false);
         if (p.parent_dim < d)
           fail("partitioned entity (" + std::to_string(d) + ", " + std::to_string(t) + ") has a parent of dimension " +
                std::to_string(p.parent_dim));
@@ -412,7 +424,7 @@ TetSoup read_msh4(TextCursor& cur, bool binary) {
   Reader r{cur, binary, {}, {}, {}, false, {}, {}, 0, false, {}, {}, 0, 0, 0, 1};
   r.soup.source = cur.source();
   bool have_nodes = false;
-  read_sections(cur, [&](std::string_view name) {
+  const std::string elements_place = read_sections(cur, [&](std::string_view name) {
     if (name == "Entities" || name == "PartitionedEntities") {
       if (have_nodes) cur.fail("$" + std::string(name) + " after $Nodes");
       if (name == "Entities") r.entities_section(); else r.partitioned_entities_section();
@@ -428,6 +440,7 @@ TetSoup read_msh4(TextCursor& cur, bool binary) {
     }
     return true;
   });
+  require_tets(r.soup, cur, elements_place);
   r.finish();
   return std::move(r.soup);
 }

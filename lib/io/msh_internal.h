@@ -18,35 +18,49 @@ namespace polydual::io::msh {
 // lookup; the elements' ~4 lookups per tet dominated the reading of large
 // files with a hash map); any other tag (sparse numbering, a negative msh 2.2
 // id seen as a huge unsigned) goes to a hash map. Same answers either way.
+// The array grows with the nodes inserted (to at most 4 slots per node read
+// plus 1024), so a header that announces many nodes, or one huge tag, costs
+// nothing until nodes back it; a tag stored in the map before the array grew
+// past it is still found there.
 class NodeTags {
  public:
   static constexpr std::uint32_t kNone = 0xffffffffu;
-  // Room for `count` nodes, tags below min(max_tag, 4 * count + 1024) + 1
-  // held densely (at most ~16 bytes per node).
+  // Tags below min(max_tag, 4 * count + 1024) + 1 may be held densely.
   void reserve(std::uint64_t count, std::uint64_t max_tag) {
-    const std::uint64_t bound = std::min<std::uint64_t>(max_tag, 4 * count + 1024);
-    dense_.assign(bound + 1, kNone);
+    bound_ = std::min<std::uint64_t>(max_tag, 4 * count + 1024) + 1;
   }
   // Records tag -> at; returns kNone when the tag is new, else the index it
   // already had (which is kept).
   std::uint32_t insert(std::uint64_t tag, std::uint32_t at) {
+    ++inserted_;
+    if (tag >= dense_.size() && tag < std::min(bound_, 4 * inserted_ + 1024)) grow(tag);
     if (tag < dense_.size()) {
-      const std::uint32_t had = dense_[tag];
-      if (had == kNone) dense_[tag] = at;
-      return had;
+      std::uint32_t& slot = dense_[tag];
+      if (slot != kNone) return slot;
+      if (const std::uint32_t had = find_sparse(tag); had != kNone) return had;
+      slot = at;
+      return kNone;
     }
     const auto [it, fresh] = sparse_.emplace(tag, at);
     return fresh ? kNone : it->second;
   }
   // The index of tag, or kNone.
   std::uint32_t find(std::uint64_t tag) const {
-    if (tag < dense_.size()) return dense_[tag];
-    const auto it = sparse_.find(tag);
-    return it == sparse_.end() ? kNone : it->second;
+    if (tag < dense_.size() && dense_[tag] != kNone) return dense_[tag];
+    return find_sparse(tag);
   }
 
  private:
+  void grow(std::uint64_t tag) {
+    dense_.resize(std::min<std::uint64_t>(bound_, std::max<std::uint64_t>(tag + 1, 2 * dense_.size())), kNone);
+  }
+  std::uint32_t find_sparse(std::uint64_t tag) const {
+    if (sparse_.empty()) return kNone;
+    const auto it = sparse_.find(tag);
+    return it == sparse_.end() ? kNone : it->second;
+  }
   std::vector<std::uint32_t> dense_;
+  std::uint64_t bound_ = 0, inserted_ = 0;
   std::unordered_map<std::uint64_t, std::uint32_t> sparse_;
 };
 
@@ -72,10 +86,11 @@ void expect_end(TextCursor& cur, std::string_view name);
 // The section loop both versions share: for every "$Name" until the end of
 // the file, calls read(name), which returns false for a section it does not
 // know (skipped up to $EndName); $Nodes must come once and before the one
-// $Elements, and both must be present.
+// $Elements, and both must be present. Returns the place of $Elements.
 template <class ReadSection>
-void read_sections(TextCursor& cur, ReadSection&& read) {
+std::string read_sections(TextCursor& cur, ReadSection&& read) {
   bool have_nodes = false, have_elements = false;
+  std::string elements_place;
   while (!cur.at_end()) {
     std::string_view name = cur.token("section name");
     if (name.size() < 2 || name[0] != '$') cur.fail("expected a section such as $Nodes, got '" + quoted(name) + "'");
@@ -87,12 +102,19 @@ void read_sections(TextCursor& cur, ReadSection&& read) {
       if (!have_nodes) cur.fail("$Elements before $Nodes");
       if (have_elements) cur.fail("second $Elements section");
       have_elements = true;
+      elements_place = cur.is_binary() ? "byte " + std::to_string(cur.offset() - name.size() - 1) : cur.line_place();
     }
     if (!read(name)) skip_section(cur, name);
   }
   if (!have_nodes) throw InputError(cur.source(), "end of file", "missing $Nodes section");
   if (!have_elements) throw InputError(cur.source(), "end of file", "missing $Elements section");
+  return elements_place;
 }
+
+// A file whose sections are present but hold no tet is empty as a tet mesh
+// (a surface mesh, or $Nodes and $Elements with no records): an error at
+// `elements_place`, before anything is dropped as unattached.
+void require_tets(const TetSoup& soup, const TextCursor& cur, const std::string& elements_place);
 
 // Section loops after $MeshFormat (the cursor stands after $EndMeshFormat).
 TetSoup read_msh2(TextCursor& cur, bool binary);

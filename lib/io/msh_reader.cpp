@@ -4,6 +4,7 @@
 
 #include "io/file_bytes.h"
 #include "io/msh_internal.h"
+#include "io/unattached.h"
 
 namespace polydual {
 
@@ -59,7 +60,7 @@ std::string high_order_warning(const std::string& source, int max_order) {
 void skip_section(TextCursor& cur, std::string_view name) {
   // Searching the raw bytes works for binary sections as well as text ones.
   const std::string end = "$End" + std::string(name);
-  const std::size_t at = cur.bytes().find(end, cur.offset());
+  const std::size_t at = cur.find(end);
   if (at == std::string_view::npos) cur.fail("section $" + std::string(name) + " is not closed by " + end);
   cur.seek(at + end.size());
 }
@@ -77,6 +78,13 @@ std::string physical_name(TextCursor& cur) {
   return std::string(line.substr(first + 1, last - first - 1));
 }
 
+void require_tets(const TetSoup& soup, const TextCursor& cur, const std::string& elements_place) {
+  if (!soup.tets.empty()) return;
+  const std::size_t others = soup.triangles.size() + soup.edges.size() + soup.corners.size();
+  const std::string only = others ? ", only " + count_of(others, "triangle, line or point", "triangles, lines and points") : "";
+  throw InputError(cur.source(), elements_place, "the file holds no tetrahedra ($Elements has none" + only + ")");
+}
+
 double binary_coordinate(TextCursor& cur, const char* what) {
   const std::size_t at = cur.offset();
   const double v = cur.binary<double>(what);
@@ -88,9 +96,13 @@ double binary_coordinate(TextCursor& cur, const char* what) {
 
 }  // namespace io::msh
 
-TetSoup read_msh(std::string_view bytes, const std::string& source) {
-  io::TextCursor cur(bytes, source);
-  const std::string_view first = cur.at_end() ? std::string_view() : cur.token("$MeshFormat");
+namespace {
+
+// $MeshFormat, then the sections of its version; the cursor names the source.
+TetSoup read_msh_from(io::TextCursor& cur) {
+  const std::string& source = cur.source();
+  if (cur.at_end()) throw InputError(source, "", "the file is empty");
+  const std::string_view first = cur.token("$MeshFormat");
   if (first != "$MeshFormat")
     cur.fail("not a Gmsh file: expected $MeshFormat, got '" + io::quoted(first) + "'");
   const std::string_view version = cur.token("format version");
@@ -121,6 +133,17 @@ TetSoup read_msh(std::string_view bytes, const std::string& source) {
   return soup;
 }
 
-TetSoup read_msh_file(const std::string& path) { return read_msh(io::read_file_bytes(path), path); }
+}  // namespace
+
+TetSoup read_msh(std::string_view bytes, const std::string& source) {
+  io::TextCursor cur(bytes, source);
+  return read_msh_from(cur);
+}
+
+TetSoup read_msh_file(const std::string& path) {
+  io::InputFile file(path);
+  io::TextCursor cur(file);
+  return read_msh_from(cur);
+}
 
 }  // namespace polydual

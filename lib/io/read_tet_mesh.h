@@ -7,9 +7,11 @@
 
 namespace polydual {
 
-// Throws InputError(path, "", "cannot open file") when the file cannot be
-// read, InputError naming the extension when it is not supported, and the
-// reader's InputError (with line or byte) when the content is bad.
+// Throws InputError(path, "", reason) when the path is not a readable regular
+// file (io/file_bytes.h: "cannot open file (...)", "is a directory; ...", "is
+// a dangling symbolic link (to 'T')"), InputError naming the extension when
+// it is not supported, and the reader's InputError (with line or byte) when
+// the content is bad.
 TetSoup read_tet_mesh(const std::string& path);
 
 }  // namespace polydual

@@ -28,7 +28,7 @@ TetSoup read_tet_mesh(const std::string& path) {
   if (ext == ".mesh") return read_medit_file(path);
   if (ext == ".node" || ext == ".ele") return read_tetgen_files(path);
   if (ext == ".vtu") return read_vtu_file(path);
-  if (!io::file_exists(path)) throw InputError(path, "", "cannot open file");
+  io::require_regular_file(path);  // a missing file or a device is reported as such first
   throw InputError(path, "", "unknown mesh file extension '" + ext + "' (supported: .msh, .mesh, .node/.ele, .vtu)");
 }
 

@@ -7,6 +7,7 @@
 #include <ostream>
 
 #include "core/atomic_file.h"
+#include "core/file_type.h"
 #include "io/file_bytes.h"
 #include "io/record_checks.h"
 #include "io/text_cursor.h"
@@ -26,9 +27,16 @@ std::int32_t integer_attribute(io::TextCursor& cur, const char* what) {
   return static_cast<std::int32_t>(v);
 }
 
-std::int64_t read_nodes(std::string_view bytes, const std::string& source, TetSoup& soup) {
-  io::TextCursor cur(bytes, source, '#');
-  const std::int64_t n = cur.integer_in("number of nodes", 1, kMaxCount);
+// A count of the first line; 0 is an empty file (an error when `required`).
+std::int64_t header_count(io::TextCursor& cur, const char* what, const char* items, bool required) {
+  if (cur.at_end()) throw InputError(cur.source(), "", "the file is empty");
+  const std::int64_t n = cur.integer_in(what, 0, kMaxCount);
+  if (n == 0 && required) cur.fail(std::string("the file holds no ") + items + " (its count is 0)");
+  return n;
+}
+
+std::int64_t read_nodes(io::TextCursor& cur, TetSoup& soup) {
+  const std::int64_t n = header_count(cur, "number of nodes", "nodes", true);
   const std::int64_t dim = cur.integer("dimension");
   if (dim != 3) cur.fail("dimension " + std::to_string(dim) + " not supported (only 3)");
   const std::int64_t nattr = cur.integer_in("number of attributes", 0, 1000);
@@ -58,9 +66,8 @@ std::uint32_t vertex(io::TextCursor& cur, std::int64_t base, std::size_t n) {
   return static_cast<std::uint32_t>(cur.integer_in("node index", base, base + static_cast<std::int64_t>(n) - 1) - base);
 }
 
-void read_elements(std::string_view bytes, const std::string& source, std::int64_t base, TetSoup& soup) {
-  io::TextCursor cur(bytes, source, '#');
-  const std::int64_t n = cur.integer_in("number of tetrahedra", 1, kMaxCount);
+void read_elements(io::TextCursor& cur, std::int64_t base, TetSoup& soup) {
+  const std::int64_t n = header_count(cur, "number of tetrahedra", "tetrahedra", true);
   const std::int64_t per_tet = cur.integer("nodes per tetrahedron");
   if (per_tet != 4) cur.fail("tetrahedra with " + std::to_string(per_tet) + " nodes not supported (only linear, 4)");
   const std::int64_t nattr = cur.integer_in("number of attributes", 0, 1000);
@@ -85,9 +92,8 @@ void read_elements(std::string_view bytes, const std::string& source, std::int64
   }
 }
 
-void read_faces(std::string_view bytes, const std::string& source, std::int64_t base, TetSoup& soup) {
-  io::TextCursor cur(bytes, source, '#');
-  const std::int64_t n = cur.integer_in("number of faces", 0, kMaxCount);
+void read_faces(io::TextCursor& cur, std::int64_t base, TetSoup& soup) {
+  const std::int64_t n = header_count(cur, "number of faces", "faces", false);
   const std::int64_t bmark = cur.integer_in("boundary marker flag", 0, 1);
   cur.check_count(n, 8 + 2 * bmark, "face");
   for (std::int64_t i = 0; i < n; ++i) {
@@ -108,6 +114,12 @@ void read_faces(std::string_view bytes, const std::string& source, std::int64_t 
   }
 }
 
+TetSoup finished(TetSoup soup, const std::string& basename) {
+  soup.source = basename + ".ele";
+  io::drop_unattached(soup);
+  return soup;
+}
+
 bool ends_with(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
@@ -123,21 +135,40 @@ std::string tetgen_basename(const std::string& path) {
 TetSoup read_tetgen(std::string_view node, std::string_view ele, std::optional<std::string_view> face,
                     const std::string& basename) {
   TetSoup soup;
-  const std::int64_t base = read_nodes(node, basename + ".node", soup);
-  read_elements(ele, basename + ".ele", base, soup);
-  if (face) read_faces(*face, basename + ".face", base, soup);
-  soup.source = basename + ".ele";
-  io::drop_unattached(soup);
-  return soup;
+  io::TextCursor node_cur(node, basename + ".node", '#');
+  const std::int64_t base = read_nodes(node_cur, soup);
+  io::TextCursor ele_cur(ele, basename + ".ele", '#');
+  read_elements(ele_cur, base, soup);
+  if (face) {
+    io::TextCursor face_cur(*face, basename + ".face", '#');
+    read_faces(face_cur, base, soup);
+  }
+  return finished(std::move(soup), basename);
 }
 
+// Each file is opened and read in turn, so a bad .node is refused before the
+// .ele is opened.
 TetSoup read_tetgen_files(const std::string& path) {
   const std::string base = tetgen_basename(path);
-  const std::string node = io::read_file_bytes(base + ".node");
-  const std::string ele = io::read_file_bytes(base + ".ele");
-  std::optional<std::string> face;
-  if (io::file_exists(base + ".face")) face = io::read_file_bytes(base + ".face");
-  return read_tetgen(node, ele, face ? std::optional<std::string_view>(*face) : std::nullopt, base);
+  TetSoup soup;
+  std::int64_t first = 0;
+  {
+    io::InputFile node(base + ".node");
+    io::TextCursor cur(node, '#');
+    first = read_nodes(cur, soup);
+  }
+  {
+    io::InputFile ele(base + ".ele");
+    io::TextCursor cur(ele, '#');
+    read_elements(cur, first, soup);
+  }
+  // A .face is optional; when present in any form it must be readable.
+  if (file_type_no_follow(base + ".face") != FileType::Missing) {
+    io::InputFile face(base + ".face");
+    io::TextCursor cur(face, '#');
+    read_faces(cur, first, soup);
+  }
+  return finished(std::move(soup), base);
 }
 
 void write_tetgen(const TetSoup& soup, const std::string& path) {

@@ -3,6 +3,12 @@
 // binary parts of Gmsh files. Every failure becomes an InputError naming the
 // source and the place ("line N" in text, "byte N" in binary data), so the
 // readers never need their own bookkeeping of positions.
+//
+// Over a file (io/file_bytes.h) the cursor loads the bytes as it reaches
+// them, so a reader that fails early has read little of a huge file. A UTF-8
+// byte-order mark at the start is skipped. A NUL byte where text is expected
+// (a token, a comment, the rest of a line) is an error at its place: text
+// formats hold none, and a zero-filled file stops there.
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -14,12 +20,15 @@
 
 namespace polydual::io {
 
+class InputFile;
+
 class TextCursor {
  public:
   // comment: a character that starts a comment running to the end of the line
   // ('#' for Medit and TetGen), or '\0' for none (Gmsh).
-  TextCursor(std::string_view bytes, std::string source, char comment = '\0')
-      : bytes_(bytes), source_(std::move(source)), comment_(comment) {}
+  TextCursor(std::string_view bytes, std::string source, char comment = '\0');
+  // Over `file` (which must outlive the cursor), named by its path.
+  explicit TextCursor(InputFile& file, char comment = '\0');
 
   // Skips whitespace and comments; true when nothing but those remains.
   bool at_end();
@@ -56,12 +65,16 @@ class TextCursor {
 
   std::size_t line() const { return token_line_; }
   std::size_t offset() const { return pos_; }
-  std::size_t remaining() const { return bytes_.size() - pos_; }
-  std::string_view bytes() const { return bytes_; }
+  // Bytes after the cursor, counted to the end of the file (not only of
+  // what is loaded).
+  std::size_t remaining() const { return total() - pos_; }
+  // The absolute offset of the next `needle` at or after the cursor
+  // (loading on as needed), or npos.
+  std::size_t find(std::string_view needle);
   const std::string& source() const { return source_; }
   // Numbers lines from `line` (for a cursor over a slice of a larger file).
   void set_first_line(std::size_t line) { line_ = token_line_ = line; }
-  // Moves to an absolute byte offset (after a search of the raw bytes).
+  // Moves to an absolute byte offset (after find()).
   void seek(std::size_t pos);
 
   // In binary mode (Gmsh binary files after $MeshFormat) every failure names
@@ -76,7 +89,14 @@ class TextCursor {
 
  private:
   void skip_blanks();
-  std::string_view bytes_;
+  void skip_byte_order_mark();
+  // True when byte p exists (loading up to it from the file if needed).
+  bool have(std::size_t p) { return p < bytes_.size() || (file_ && load(p + 1)); }
+  bool load(std::size_t end);
+  std::size_t total() const;
+  [[noreturn]] void fail_nul() const;
+  std::string_view bytes_;  // what is loaded (all of it for a memory buffer)
+  InputFile* file_ = nullptr;
   std::string source_;
   char comment_;
   bool binary_ = false;

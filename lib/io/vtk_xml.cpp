@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "core/error.h"
+#include "io/file_bytes.h"
 #include "io/text_cursor.h"
 
 namespace polydual::io::vtkxml {
@@ -14,6 +15,63 @@ namespace {
 bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
 
 }  // namespace
+
+namespace {
+
+// Fails at the first NUL byte of bytes[from, end) unless raw appended data
+// began before it; true once it has (no later byte needs checking).
+bool check_text(const std::string& source, std::string_view bytes, std::size_t from) {
+  const std::size_t nul = bytes.find('\0', from);
+  if (nul == std::string_view::npos) return false;
+  if (bytes.substr(0, nul).find("<AppendedData") != std::string_view::npos) return true;
+  fail_nul_byte(source, bytes, nul);
+}
+
+// The first bytes, before the rest is read: blanks (after a byte-order mark),
+// then declarations and comments, then <VTKFile. Only what `head` holds is
+// judged (a prolog longer than the head is left to the full scan).
+void check_head(const std::string& source, std::string_view head) {
+  auto not_vtk = [&](std::size_t at, const std::string& why) {
+    throw InputError(source, "line " + std::to_string(line_of(head, at)), "not a VTK XML file (" + why + ")");
+  };
+  std::size_t p = head.substr(0, 3) == "\xEF\xBB\xBF" ? 3 : 0;
+  while ((p = head.find_first_not_of(" \t\r\n", p)) != std::string_view::npos) {
+    if (head[p] != '<') not_vtk(p, "it starts with '" + quoted(head.substr(p, 16)) + "', not with a tag");
+    if (head.substr(p, 2) != "<?" && head.substr(p, 2) != "<!") break;
+    const std::string_view close = head.substr(p, 2) == "<?" ? "?>" : head.substr(p, 4) == "<!--" ? "-->" : ">";
+    const std::size_t e = head.find(close, p);
+    if (e == std::string_view::npos) return;
+    p = e + close.size();
+  }
+  if (p != std::string_view::npos && head.size() - p >= 8 && head.substr(p, 8) != "<VTKFile")
+    not_vtk(p, "its first element is '" + quoted(head.substr(p, 16)) + "', not <VTKFile>");
+}
+
+// The last non-blank byte of the file must close a tag.
+void check_tail(const InputFile& file) {
+  const std::string tail = file.tail(4096);
+  const std::size_t last = tail.find_last_not_of(" \t\r\n");
+  if (last == std::string::npos || tail[last] == '>') return;  // all blank: nothing to judge by
+  const std::uint64_t at = file.size() - tail.size() + last;
+  throw InputError(file.path(), "byte " + std::to_string(at),
+                   tail[last] == '\0' ? "the file ends in NUL bytes, not in </VTKFile> (zero-filled or cut short?)"
+                                      : "the file does not end in </VTKFile> (cut short?)");
+}
+
+}  // namespace
+
+std::string_view load_vtk_xml(InputFile& file) {
+  std::string_view b = file.load_to(1);
+  bool binary = check_text(file.path(), b, 0);
+  check_head(file.path(), b);
+  check_tail(file);
+  while (b.size() < file.size()) {
+    const std::size_t had = b.size();
+    b = file.load_to(2 * had);
+    if (!binary) binary = check_text(file.path(), b, had);
+  }
+  return file.load_to(file.size() + 1);  // and not longer than at open
+}
 
 VtkXml::VtkXml(std::string_view bytes, std::string source, std::string_view grid_type)
     : bytes_(bytes), source_(std::move(source)) {
@@ -41,6 +99,7 @@ void VtkXml::fail_at(const std::string& place, const std::string& what) const {
 
 // The element tree: every start tag becomes an Element, end tags must match.
 void VtkXml::scan() {
+  check_text(source_, bytes_, 0);  // load_vtk_xml checked a file as it loaded; buffers arrive unchecked
   std::vector<int> stack;
   std::size_t pos = 0;
   while (true) {
@@ -56,6 +115,8 @@ void VtkXml::scan() {
     if (bytes_.substr(lt, 2) == "<!") { pos = skip_to(">"); continue; }
     pos = scan_tag(lt, stack);
   }
+  if (elements_.empty() && bytes_.find_first_not_of(" \t\r\n") == std::string_view::npos)
+    fail_at("", "the file is empty");
   if (!stack.empty()) fail(bytes_.size(), "file ends inside <" + quoted(elements_[stack.back()].name) + ">");
   if (elements_.empty() || elements_.front().name != "VTKFile") fail(0, "not a VTK XML file (no <VTKFile>)");
 }

@@ -30,7 +30,18 @@
 #include <utility>
 #include <vector>
 
+namespace polydual::io {
+class InputFile;
+}
+
 namespace polydual::io::vtkxml {
+
+// All of a VTK XML file, refused as soon as it cannot be one, before the
+// rest is read: no NUL byte may come before <AppendedData> (only raw appended
+// data is binary; a zero-filled file fails in its first 64 KiB), and the last
+// non-blank byte must be the '>' of a tag (a file cut short or padded with
+// zeros fails from its last bytes alone). Errors name the line or byte.
+std::string_view load_vtk_xml(InputFile& file);
 
 // One element of the document (the scanner keeps them all, in file order).
 struct Element {

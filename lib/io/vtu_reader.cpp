@@ -116,6 +116,10 @@ TetSoup assemble(const VtkXml& f, const Arrays& r) {
       soup.triangles.push_back({tri, static_cast<std::int32_t>(tag)});
     }
   }
+  if (soup.tets.empty())
+    f.fail(r.piece_pos, "the file holds no tetrahedra (" +
+                            (r.ncells ? "none of its " + std::to_string(r.ncells) + " cells is a tetra"
+                                      : std::string("NumberOfCells is 0")) + ")");
   return soup;
 }
 
@@ -126,6 +130,9 @@ TetSoup read_vtu(std::string_view bytes, const std::string& source) {
   return assemble(file, read_arrays(file));
 }
 
-TetSoup read_vtu_file(const std::string& path) { return read_vtu(io::read_file_bytes(path), path); }
+TetSoup read_vtu_file(const std::string& path) {
+  io::InputFile file(path);
+  return read_vtu(io::vtkxml::load_vtk_xml(file), path);
+}
 
 }  // namespace polydual
