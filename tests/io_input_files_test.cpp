@@ -260,6 +260,26 @@ TEST_F(InputFiles, SparseFileThroughTheCommand) {
   EXPECT_FALSE(fs::exists(dir / "out.vtu"));
 }
 
+// `check` and `optimize` read polyhedral VTUs through the same bounded loader.
+TEST_F(InputFiles, PolyhedralVtuInputsAreBoundedToo) {
+  sparse("z.vtu", "");
+  sparse("h.vtu", "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\">\n");
+  for (const char* cmd : {"check", "optimize"}) {
+    for (const char* name : {"z.vtu", "h.vtu"}) {
+      const auto start = std::chrono::steady_clock::now();
+      CmdResult r{0, {}};
+      const std::string extra = std::string(cmd) == "optimize" ? " -o '" + at("o.vtu") + "'" : "";
+      r.out = polydual::testing::capture(
+          "timeout 20 " + std::string(POLYDUAL_BINARY) + " " + cmd + " '" + at(name) + "'" + extra + " 2>&1", r.code);
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      EXPECT_EQ(r.code, 1) << cmd << " " << name << ": " << r.out;
+      EXPECT_THAT(r.out, HasSubstr(at(name) + ": ")) << cmd;
+      EXPECT_LT(seconds, 2.0) << cmd << " " << name;
+      EXPECT_FALSE(fs::exists(at("o.vtu")));
+    }
+  }
+}
+
 // ---- NUL bytes in text, byte-order marks
 
 // `text` with its byte at `at` replaced by NUL.

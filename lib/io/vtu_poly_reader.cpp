@@ -308,6 +308,11 @@ PolyMesh read_vtu_poly_bytes(std::string_view bytes, const std::string& source) 
   return mesh;
 }
 
-PolyMesh read_vtu_poly(const std::string& path) { return read_vtu_poly_bytes(io::read_file_bytes(path), path); }
+// The head, the NUL-free text and the closing tag are checked as the file
+// loads (load_vtk_xml), so a zero-filled or cut file is refused early.
+PolyMesh read_vtu_poly(const std::string& path) {
+  io::InputFile file(path);
+  return read_vtu_poly_bytes(io::vtkxml::load_vtk_xml(file), path);
+}
 
 }  // namespace polydual
