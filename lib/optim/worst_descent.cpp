@@ -22,7 +22,10 @@
 // invalid.
 //
 // The rounds stop when no point of the worst cell moves (w is a local min-max
-// optimum of these moves), or after worst_rounds rounds. Serial, in a fixed
+// optimum of these moves), after worst_rounds rounds, or when the corners
+// evaluated reach kWorkBudget times the corners of one pass over every point's
+// cells: the stage's time then grows with the mesh and nothing else (a coarse
+// mesh's few large cells made its rounds cost 40x its sweeps). Serial, in a fixed
 // order: deterministic for any thread count. A round visits one or a few
 // points; the worst cell is the first of an ordered set of the cells above a
 // threshold, not found by a scan of every cell per round.
@@ -47,6 +50,9 @@ constexpr int kStepsPerVisit = 4;    // accepted steps at most per visit
 // share of (max - mean) at the start; a cell that rises above that threshold
 // later joins it.
 constexpr double kCandidateShare = 0.5;
+// The work bound, in passes over every point's cells (corners evaluated by the
+// quality measure and the star test); about 5x the sweeps' own measurements.
+constexpr double kWorkBudget = 16;
 
 // The cells above a threshold, ordered by quality (highest first, then the
 // lowest index): the worst cell is the first.
@@ -78,6 +84,15 @@ class WorstCells {
 class WorstDescent {
  public:
   explicit WorstDescent(Context& ctx) : ctx_(ctx) {}
+
+  // Corners evaluated so far, and the cost of evaluating every point's cells once.
+  std::uint64_t work() const { return work_; }
+  std::uint64_t pass_cost() const {
+    std::uint64_t corners = 0;
+    for (std::uint32_t c = 0; c < ctx_.stencil.num_cells(); ++c)
+      corners += ctx_.stencil.num_corners(c, ctx_.params.metric) * ctx_.stencil.points_of(c).size();
+    return corners;
+  }
 
   // Up to kStepsPerVisit accepted steps at p while w is the worst cell;
   // returns how many. The qualities of p's cells are kept current in
@@ -113,6 +128,7 @@ class WorstDescent {
     q_.clear();
     double m = -std::numeric_limits<double>::infinity();
     for (std::uint32_t c : cells) {
+      work_ += ctx_.stencil.num_corners(c, ctx_.params.metric);
       q_.push_back(polydual::cell_quality(ctx_.stencil, c, ctx_.params.metric, ctx_.mesh.points));
       m = std::max(m, q_.back());
     }
@@ -173,13 +189,16 @@ class WorstDescent {
 
   // Exact: every cell of p that is valid stays valid (the star test).
   bool keeps_valid(std::span<const std::uint32_t> cells) {
-    for (std::uint32_t c : cells)
+    for (std::uint32_t c : cells) {
+      work_ += ctx_.stencil.num_corners(c, ctx_.params.metric);
       if (ctx_.cell_valid[c] && !star_shaped_verdict(ctx_.stencil, c, ctx_.mesh.points, true, scratch_).valid)
         return false;
+    }
     return true;
   }
 
   Context& ctx_;
+  std::uint64_t work_ = 0;
   std::vector<double> q_, q0_;
   std::vector<Point3> scratch_;
 };
@@ -197,7 +216,8 @@ IterationRecord descend_worst(Context& ctx) {
   if (ctx.params.worst_rounds <= 0 || !(max > mean)) return counts;
   WorstCells worst(ctx.cell_quality, mean + kCandidateShare * (max - mean));
   WorstDescent descent(ctx);
-  for (int round = 0; round < ctx.params.worst_rounds && !worst.empty(); ++round) {
+  const double budget = kWorkBudget * static_cast<double>(descent.pass_cost());
+  for (int round = 0; round < ctx.params.worst_rounds && !worst.empty() && double(descent.work()) < budget; ++round) {
     const std::uint32_t w = worst.worst();
     std::uint64_t moved = 0;
     for (PointId p : ctx.stencil.points_of(w)) {
