@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <random>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -285,6 +286,86 @@ TEST(MeshOverlap, BuiltInDomainsAreAccepted) {
 TEST(MeshOverlap, FixturesAreAccepted) {
   for (const char* name : {"cube5.mesh", "cgal_twomat_patches.mesh", "cgal_twomat_sides.mesh"})
     EXPECT_EQ(refusal(read_medit_file(std::string(POLYDUAL_TEST_DATA) + "/" + name)), "accepted") << name;
+}
+
+// ---- properties on random lattice meshes
+
+// Whether some of 4000 random points of the box [lo, hi] lies strictly
+// inside two tets (EXACT: orient3d on the sample's doubles): a witness that
+// the tets overlap.
+bool overlap_witnessed(const TetSoup& s, Point3 lo, Point3 hi, std::mt19937& rng) {
+  std::uniform_real_distribution<double> ux(lo.x, hi.x), uy(lo.y, hi.y), uz(lo.z, hi.z);
+  for (int k = 0; k < 4000; ++k) {
+    const Point3 x{ux(rng), uy(rng), uz(rng)};
+    int inside = 0;
+    for (const auto& t : s.tets) {
+      bool in = true;
+      for (const auto& f : kTetFace)
+        in = in && orient3d(s.points[t[f[0]]], s.points[t[f[1]]], s.points[t[f[2]]], x) == Sign::Negative;
+      inside += in;
+    }
+    if (inside >= 2) return true;
+  }
+  return false;
+}
+
+TEST(MeshOverlap, RandomLatticeSubsetsAreAcceptedAndExtraPartsOnlyIfTheyOverlapNothing) {
+  // Any subset of a conformal lattice's tets covers no place twice (touching
+  // along non-manifold edges and at corners, with cavities): accepted, also
+  // with one more of the lattice's tets. A tet on random lattice points, or a
+  // small cube dropped anywhere, is refused whenever a sample point lies in
+  // two tets (an accepted mesh has no such point; a refusal without one may
+  // be a crack or an overlap the samples missed).
+  const TetSoup lattice = cube(3, 1.0, {0, 0, 0});
+  std::mt19937 rng(12345);
+  std::uniform_real_distribution<double> at(0.0, 3.0), size(0.05, 1.2);
+  int witnessed = 0, nested = 0, accepted = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    TetSoup s = lattice;
+    s.tets.clear();
+    s.tet_region.clear();
+    std::vector<std::size_t> unused;
+    for (std::size_t t = 0; t < lattice.tets.size(); ++t) {
+      if (rng() % 3 != 0) {
+        unused.push_back(t);
+        continue;
+      }
+      s.tets.push_back(lattice.tets[t]);
+      s.tet_region.push_back(1);
+    }
+    if (s.tets.empty() || unused.empty()) continue;
+    ASSERT_EQ(refusal(s), "accepted") << "trial " << trial;
+    TetSoup more = s;
+    more.tets.push_back(lattice.tets[unused[rng() % unused.size()]]);
+    more.tet_region.push_back(1);
+    ASSERT_EQ(refusal(more), "accepted") << "trial " << trial;
+    // A tet on four random lattice points.
+    std::array<std::uint32_t, 4> extra;
+    for (auto& v : extra) v = std::uint32_t(rng() % lattice.points.size());
+    const Sign o = orient3d(s.points[extra[0]], s.points[extra[1]], s.points[extra[2]], s.points[extra[3]]);
+    if (o != Sign::Zero) {
+      if (o == Sign::Negative) std::swap(extra[0], extra[1]);
+      more = s;
+      more.tets.push_back(extra);
+      more.tet_region.push_back(1);
+      const bool overlap = overlap_witnessed(more, {0, 0, 0}, {3, 3, 3}, rng);
+      witnessed += overlap;
+      if (overlap) EXPECT_NE(refusal(more), "accepted") << "trial " << trial << ": an overlapping mesh was accepted";
+    }
+    // A cube of 6 tets of random size at a random place.
+    const double h = size(rng);
+    const Point3 p{at(rng), at(rng), at(rng)};
+    more = join(s, cube(1, h, p));
+    const bool overlap = overlap_witnessed(more, p, p + Point3{h, h, h}, rng);
+    witnessed += overlap;
+    const std::string msg = refusal(more);
+    if (overlap) EXPECT_NE(msg, "accepted") << "trial " << trial << ": an overlapping mesh was accepted";
+    nested += msg.find("lies inside another") != std::string::npos;
+    accepted += msg == "accepted";
+  }
+  EXPECT_GT(witnessed, 20);
+  EXPECT_GT(nested, 0);   // some cubes fell inside the material without crossing its walls
+  EXPECT_GT(accepted, 0); // and some into the empty space
 }
 
 // ---- the command
