@@ -15,11 +15,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <initializer_list>
-#include <limits>
 #include <numeric>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -60,17 +59,19 @@ std::string tets_using(const ClassifiedTetMesh& m, VertexId v) {
 
 // ---- 1. Coincident vertices. The points are sorted by a 32-bit hash of
 // their exact coordinates (a radix sort; -0.0 taken as 0.0), so equal points
-// form runs of one hash; inside a run they are compared exactly. The pair
-// reported is the one with the smallest file numbers: the same every run.
+// form runs of one hash; each run is sorted on the exact coordinates and
+// then the file's numbering, so equal points end up side by side, the
+// smallest numbers first. The pair reported is the one with the smallest
+// file numbers: the same every run.
 
 std::uint64_t mix(std::uint64_t x) {  // splitmix64's finaliser
   x ^= x >> 30; x *= 0xbf58476d1ce4e5b9ULL;
   x ^= x >> 27; x *= 0x94d049bb133111ebULL;
   return x ^ (x >> 31);
 }
-std::uint64_t coordinate_hash(const Point3& p) {
+std::uint32_t coordinate_hash(const Point3& p) {
   auto bits = [](double x) { return std::bit_cast<std::uint64_t>(x == 0.0 ? 0.0 : x); };
-  return mix(bits(p.x) ^ mix(bits(p.y) ^ mix(bits(p.z))));
+  return std::uint32_t(mix(bits(p.x) ^ mix(bits(p.y) ^ mix(bits(p.z)))) >> 32);
 }
 
 [[noreturn, gnu::cold]] void throw_coincident(const ClassifiedTetMesh& m, VertexId a, VertexId b) {
@@ -86,26 +87,28 @@ std::uint64_t coordinate_hash(const Point3& p) {
 }
 
 void check_coincident_vertices(const ClassifiedTetMesh& m) {
-  struct Rec { std::uint64_t key; std::uint32_t v; };
+  struct Rec { std::uint32_t hash, v; };
   std::vector<Rec> recs(m.num_vertices());
   for (std::size_t v = 0; v < recs.size(); ++v) recs[v] = {coordinate_hash(m.point(VertexId(v))), std::uint32_t(v)};
-  radix_sort_by_key(recs, [](const Rec& r) { return r.key >> 32; }, 32);
+  radix_sort_by_key(recs, [](const Rec& r) { return r.hash; }, 32);
+  auto exact_order = [&](const Rec& x, const Rec& y) {
+    const Point3 &p = m.point(VertexId(x.v)), &q = m.point(VertexId(y.v));
+    if (p.x != q.x) return p.x < q.x;
+    if (p.y != q.y) return p.y < q.y;
+    if (p.z != q.z) return p.z < q.z;
+    return m.input_vertex(VertexId(x.v)) < m.input_vertex(VertexId(y.v));
+  };
   std::optional<std::pair<std::uint32_t, std::uint32_t>> first;  // file numbers (lower, higher)
   VertexId fa, fb;
   for (std::size_t s = 0, e = 0; s < recs.size(); s = e) {
-    for (e = s + 1; e < recs.size() && recs[e].key >> 32 == recs[s].key >> 32;) ++e;
-    for (std::size_t i = s; i < e; ++i)
-      for (std::size_t j = i + 1; j < e; ++j) {
-        const VertexId a(recs[i].v), b(recs[j].v);
-        if (!(m.point(a) == m.point(b))) continue;  // a hash collision
-        const std::uint32_t ia = m.input_vertex(a), ib = m.input_vertex(b);
-        const std::pair<std::uint32_t, std::uint32_t> ids{std::min(ia, ib), std::max(ia, ib)};
-        if (!first || ids < *first) {
-          first = ids;
-          fa = m.input_vertex(a) < m.input_vertex(b) ? a : b;
-          fb = fa == a ? b : a;
-        }
-      }
+    for (e = s + 1; e < recs.size() && recs[e].hash == recs[s].hash;) ++e;
+    if (e - s > 1) std::sort(recs.begin() + std::ptrdiff_t(s), recs.begin() + std::ptrdiff_t(e), exact_order);
+    for (std::size_t k = s + 1; k < e; ++k) {
+      const VertexId a(recs[k - 1].v), b(recs[k].v);
+      if (!(m.point(a) == m.point(b))) continue;  // a hash collision, or another group
+      const std::pair<std::uint32_t, std::uint32_t> ids{m.input_vertex(a), m.input_vertex(b)};
+      if (!first || ids < *first) std::tie(first, fa, fb) = std::tuple(ids, a, b);
+    }
   }
   if (first) throw_coincident(m, fa, fb);
 }
@@ -229,16 +232,18 @@ struct CellMap {
   static constexpr double kMaxCell = double((1u << 21) - 1);
   Point3 lo;
   double inv = 1;
+  Point3 top{kMaxCell, kMaxCell, kMaxCell};  // the largest cell per axis
   std::array<std::uint32_t, 3> cell(const Point3& p) const {
     std::array<std::uint32_t, 3> c;
-    for (int d = 0; d < 3; ++d) c[d] = std::uint32_t(std::clamp(std::floor((p[d] - lo[d]) * inv), 0.0, kMaxCell));
+    for (int d = 0; d < 3; ++d) c[d] = std::uint32_t(std::clamp(std::floor((p[d] - lo[d]) * inv), 0.0, top[d]));
     return c;
   }
-  // Keys pack the cells of a region whose largest cell is cell(hi) in as
-  // few bits as it needs (fewer radix passes).
+  // Cells beyond cell(hi) are clamped to it (still monotone); keys pack
+  // them in as few bits as they need (fewer radix passes).
   int shift1 = 21, shift2 = 42, bits = 63;
   void fit(const Point3& hi) {
     const auto c = cell(hi);
+    top = {double(c[0]), double(c[1]), double(c[2])};
     shift1 = std::max(1, int(std::bit_width(c[0])));
     shift2 = shift1 + std::max(1, int(std::bit_width(c[1])));
     bits = shift2 + std::max(1, int(std::bit_width(c[2])));
@@ -247,6 +252,15 @@ struct CellMap {
     return std::uint64_t(c[0]) | std::uint64_t(c[1]) << shift1 | std::uint64_t(c[2]) << shift2;
   }
 };
+
+// Calls f(key) for every cell of the box b.
+template <class F>
+void for_each_cell(const CellMap& cm, const Box3& b, F&& f) {
+  const auto lo = cm.cell(b.lo), hi = cm.cell(b.hi);
+  for (std::uint32_t z = lo[2]; z <= hi[2]; ++z)
+    for (std::uint32_t y = lo[1]; y <= hi[1]; ++y)
+      for (std::uint32_t x = lo[0]; x <= hi[0]; ++x) f(cm.key({x, y, z}));
+}
 
 CellMap cells_for(const std::vector<Box3>& boxes) {
   CellMap cm;
@@ -279,9 +293,7 @@ bool test_disjoint_pairs_grid(const std::vector<BoundaryFace>& faces, const std:
     const auto lo = cm.cell(boxes[k].lo), hi = cm.cell(boxes[k].hi);
     lo_key[k] = cm.key(lo);
     if (std::uint64_t(hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1) + recs.size() > budget) return false;
-    for (std::uint32_t z = lo[2]; z <= hi[2]; ++z)
-      for (std::uint32_t y = lo[1]; y <= hi[1]; ++y)
-        for (std::uint32_t x = lo[0]; x <= hi[0]; ++x) recs.push_back({cm.key({x, y, z}), std::uint32_t(k)});
+    for_each_cell(cm, boxes[k], [&](std::uint64_t key) { recs.push_back({key, std::uint32_t(k)}); });
   }
   radix_sort_by_key(recs, [](const Rec& r) { return r.key; }, cm.bits);
   std::uint64_t pairs = 0;
@@ -374,9 +386,49 @@ bool tet_holds_centroid(const ClassifiedTetMesh& m, TetId t, const BoundaryFace&
                        ": a part of the mesh lies inside another (the mesh covers that place twice)");
 }
 
-// One centroid per piece against every tet, the candidates from a grid over
-// the pieces' faces (about one cell per piece). With one piece there is
-// nothing to test: its outer side is the unbounded region's (L15, step 3).
+// The cells of a grid over the pieces' sample faces (about one cell per
+// piece), each with the pieces whose face box covers it.
+struct PieceCells {
+  CellMap cm;
+  Box3 all;                // the faces' boxes' union
+  std::vector<Box3> boxes;  // per piece, its sample face's box
+  struct Rec { std::uint64_t key; std::uint32_t piece; };
+  std::vector<Rec> recs;    // sorted by key
+
+  explicit PieceCells(std::vector<Box3> b) : boxes(std::move(b)) {
+    all = boxes[0];
+    for (const Box3& x : boxes)
+      all = {{std::min(all.lo.x, x.lo.x), std::min(all.lo.y, x.lo.y), std::min(all.lo.z, x.lo.z)},
+             {std::max(all.hi.x, x.hi.x), std::max(all.hi.y, x.hi.y), std::max(all.hi.z, x.hi.z)}};
+    const double ext = std::max({all.hi.x - all.lo.x, all.hi.y - all.lo.y, all.hi.z - all.lo.z});
+    const double n = std::ceil(std::cbrt(double(boxes.size())));
+    cm.lo = all.lo;
+    cm.inv = ext > 0 && std::isfinite(n / ext) ? n / ext : 1.0;
+    cm.fit(all.hi);
+    for (std::size_t q = 0; q < boxes.size(); ++q)
+      for_each_cell(cm, boxes[q], [&](std::uint64_t key) { recs.push_back({key, std::uint32_t(q)}); });
+    radix_sort_by_key(recs, [](const Rec& r) { return r.key; }, cm.bits);
+  }
+  // Calls f(piece) once for each piece whose box meets b (in the cell of the
+  // larger lower corner of the two boxes).
+  template <class F>
+  void for_each_meeting(const Box3& b, F&& f) const {
+    if (!b.meets(all)) return;
+    const auto lo = cm.cell(b.lo);
+    for_each_cell(cm, b, [&](std::uint64_t key) {
+      auto it = std::lower_bound(recs.begin(), recs.end(), key, [](const Rec& r, std::uint64_t k) { return r.key < k; });
+      for (; it != recs.end() && it->key == key; ++it) {
+        const auto ql = cm.cell(boxes[it->piece].lo);
+        if (cm.key({std::max(lo[0], ql[0]), std::max(lo[1], ql[1]), std::max(lo[2], ql[2])}) == key &&
+            boxes[it->piece].meets(b))
+          f(it->piece);
+      }
+    });
+  }
+};
+
+// One centroid per piece against every tet. With one piece there is nothing
+// to test: its outer side is the unbounded region's (L15, step 3).
 void check_no_nesting(const ClassifiedTetMesh& m, const std::vector<BoundaryFace>& faces,
                       const std::vector<EdgeRec>& by_edge, SelfOverlapStats& st) {
   const std::vector<std::uint32_t> reps = piece_representatives(faces.size(), by_edge);
@@ -384,43 +436,13 @@ void check_no_nesting(const ClassifiedTetMesh& m, const std::vector<BoundaryFace
   if (reps.size() < 2) return;
   std::vector<Box3> boxes;
   for (std::uint32_t k : reps) boxes.push_back(box_of(m, faces[k].v));
-  CellMap cm = cells_for(boxes);
-  Box3 all = boxes[0];
-  for (const Box3& b : boxes) all = {{std::min(all.lo.x, b.lo.x), std::min(all.lo.y, b.lo.y), std::min(all.lo.z, b.lo.z)},
-                                     {std::max(all.hi.x, b.hi.x), std::max(all.hi.y, b.hi.y), std::max(all.hi.z, b.hi.z)}};
-  // Cells of about the extent / cbrt(pieces): a few pieces per cell.
-  const double ext = std::max({all.hi.x - all.lo.x, all.hi.y - all.lo.y, all.hi.z - all.lo.z});
-  const double n = std::ceil(std::cbrt(double(reps.size())));
-  cm.inv = ext > 0 && std::isfinite(n / ext) ? n / ext : 1.0;
-  cm.fit(all.hi);
-  struct Rec { std::uint64_t key; std::uint32_t q; };
-  std::vector<Rec> recs;
-  for (std::size_t q = 0; q < boxes.size(); ++q) {
-    const auto lo = cm.cell(boxes[q].lo), hi = cm.cell(boxes[q].hi);
-    for (std::uint32_t z = lo[2]; z <= hi[2]; ++z)
-      for (std::uint32_t y = lo[1]; y <= hi[1]; ++y)
-        for (std::uint32_t x = lo[0]; x <= hi[0]; ++x) recs.push_back({cm.key({x, y, z}), std::uint32_t(q)});
-  }
-  radix_sort_by_key(recs, [](const Rec& r) { return r.key; }, cm.bits);
-  for (std::size_t t = 0; t < m.num_tets(); ++t) {
-    const Box3 tb = box_of(m, m.tet(TetId(t)));
-    if (!tb.meets(all)) continue;
-    const auto lo = cm.cell(tb.lo), hi = cm.cell(tb.hi);
-    for (std::uint32_t z = lo[2]; z <= hi[2]; ++z)
-      for (std::uint32_t y = lo[1]; y <= hi[1]; ++y)
-        for (std::uint32_t x = lo[0]; x <= hi[0]; ++x) {
-          const std::uint64_t key = cm.key({x, y, z});
-          auto it = std::lower_bound(recs.begin(), recs.end(), key, [](const Rec& r, std::uint64_t k) { return r.key < k; });
-          for (; it != recs.end() && it->key == key; ++it) {
-            const Box3& qb = boxes[it->q];
-            const auto ql = cm.cell(qb.lo);
-            const BoundaryFace& f = faces[reps[it->q]];
-            if (cm.key({std::max(lo[0], ql[0]), std::max(lo[1], ql[1]), std::max(lo[2], ql[2])}) == key &&
-                qb.meets(tb) && f.t != TetId(t) && tet_holds_centroid(m, TetId(t), f))
-              throw_nested(m, TetId(t), f);
-          }
-        }
-  }
+  const PieceCells cells(std::move(boxes));
+  // Tets in id order, pieces in index order: the same report every run.
+  for (std::size_t t = 0; t < m.num_tets(); ++t)
+    cells.for_each_meeting(box_of(m, m.tet(TetId(t))), [&](std::uint32_t q) {
+      const BoundaryFace& f = faces[reps[q]];
+      if (f.t != TetId(t) && tet_holds_centroid(m, TetId(t), f)) throw_nested(m, TetId(t), f);
+    });
 }
 
 }  // namespace
