@@ -5,21 +5,28 @@
 // Those local checks pass two copies of a mesh at one place, two copies
 // overlapping by half, a copy nested inside another, and a crack made by a
 // duplicated vertex; this check refuses them:
-//   1. coincident vertices: two vertices at exactly the same position (a sort
-//      on the exact coordinates). A fracture or sheet is never encoded so: it
-//      is a model face whose triangles are shared by the tets on both sides;
+//   1. coincident vertices: two vertices at exactly the same position (a
+//      radix sort on a hash of the coordinates, then a sort on the exact
+//      coordinates inside each run of one hash). A fracture or sheet is never
+//      encoded so: it is a model face whose triangles are shared by the tets
+//      on both sides;
 //   2. the boundary (the triangles with one tet) is embedded: two boundary
-//      triangles meet only in the vertices and edges they share (exact
-//      triangle-triangle tests on the pairs whose boxes meet);
+//      triangles meet only in the vertices and edge they share (exact tests,
+//      classify/triangle_crossing.h, on every pair whose boxes meet: pairs
+//      sharing an edge or a vertex from the mesh, the others from a grid or
+//      CGAL's box intersection);
 //   3. no part lies inside another: for one boundary triangle of each piece
 //      of the boundary (pieces joined across edges with exactly two boundary
 //      triangles), no tet but its own holds its centroid (exact).
 // The combinatorial closure of the boundary (every edge of a boundary
 // triangle has an even number of them) needs no test: it follows from the
 // local checks (L15, step 0).
-// Every decision is exact (lib/predicates); the grids and boxes that pick the
-// candidates are built from the input doubles without rounding, so they never
-// leave a candidate out.
+// Every decision is exact (lib/predicates); the hashes, grids and boxes that
+// pick the candidates are built from the input doubles by monotone maps, so
+// they never leave a candidate out. Cost: a pass over the tets' faces, then
+// work in the boundary triangles (plus a pass over the tets when the
+// boundary has more than one piece); a vertex or edge with k boundary
+// triangles costs k^2 pair tests.
 #pragma once
 #include <cstddef>
 
@@ -27,8 +34,8 @@
 
 namespace polydual {
 
-// What the check looked at and its wall-clock seconds (for --json and the
-// benchmarks).
+// What the check looked at and its wall-clock seconds (for tests and
+// benchmarks; classify() keeps the total in ClassifyStats::seconds_overlap).
 struct SelfOverlapStats {
   std::size_t boundary_triangles = 0;  // triangles with one tet
   std::size_t tested_pairs = 0;        // boundary triangle pairs tested exactly
