@@ -44,9 +44,9 @@ struct ClassifyStats {
 // Validates on load (design §2): finite coordinates, indices in range, every tet
 // positively oriented by the exact predicate (inverted or zero-volume tets are
 // errors naming the tet), conformity, unused vertices, no two vertices at one
-// place and no part overlapping another (classify/self_overlap.h). Throws InputError naming
-// soup.source and the place (also for the contradictions of a full
-// classification: a triangle on two surfaces, a boundary or interface
+// place and no part overlapping another (classify/self_overlap.h). Throws
+// InputError naming soup.source and the place (also for the contradictions of
+// a full classification: a triangle on two surfaces, a boundary or interface
 // triangle on none, a curve whose edges lie on different surfaces);
 // UsageError if params do not validate().
 ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params = {},
