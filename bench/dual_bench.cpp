@@ -140,7 +140,8 @@ void classify_dual_counters(benchmark::State& st, const TetSoup& soup) {
     best_wall = std::min(best_wall, wall);
     bytes_per_tet = std::max(bytes_per_tet, double(status_kb("VmHWM:") - base) * 1024.0 / double(soup.tets.size()));
     cells = pm.num_cells();
-    const double total = cs.seconds_validate + cs.seconds_order + cs.seconds_topology + cs.seconds_classification +
+    const double total = cs.seconds_validate + cs.seconds_order + cs.seconds_topology + cs.seconds_overlap +
+                         cs.seconds_classification +
                          ds.seconds_points + ds.seconds_sides + ds.seconds_faces + ds.seconds_hints + ds.seconds_cleanup +
                          ds.seconds_cells;
     if (total < best_total) { best_total = total; best_c = cs; best_d = ds; }

@@ -25,6 +25,7 @@
 #include <span>
 #include <unordered_map>
 
+#include "classify/self_overlap.h"
 #include "classify/spatial_order.h"
 #include "core/union_find.h"
 #include "core/radix_sort.h"
@@ -799,6 +800,7 @@ Json ClassifyStats::to_json() const {
   j.set("validate", seconds_validate);
   j.set("order", seconds_order);
   j.set("topology", seconds_topology);
+  j.set("overlap", seconds_overlap);
   j.set("classification", seconds_classification);
   Json out = Json::object();
   out.set("seconds", j);
@@ -835,6 +837,9 @@ ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params, Cl
                                                        std::move(c.regions), std::move(c.input_vertex),
                                                        std::move(c.input_tet));
   st.seconds_topology = since(t0);
+  t0 = Clock::now();
+  check_self_overlap(m);
+  st.seconds_overlap = since(t0);
   t0 = Clock::now();
   ModelInference(soup, params, c.remap, m).run();
   mark_planar_faces(m);

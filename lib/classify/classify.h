@@ -36,15 +36,17 @@ struct ClassifyStats {
   double seconds_validate = 0;        // indices, finite coordinates, exact orientation
   double seconds_order = 0;           // spatial renumbering
   double seconds_topology = 0;        // adjacency, triangles, edges, stars
+  double seconds_overlap = 0;         // coincident vertices, overlapping parts (classify/self_overlap.h)
   double seconds_classification = 0;  // model faces, edges, vertices
   Json to_json() const;
 };
 
 // Validates on load (design §2): finite coordinates, indices in range, every tet
 // positively oriented by the exact predicate (inverted or zero-volume tets are
-// errors naming the tet), conformity, unused vertices. Throws InputError naming
-// soup.source and the place (also for the contradictions of a full
-// classification: a triangle on two surfaces, a boundary or interface
+// errors naming the tet), conformity, unused vertices, no two vertices at one
+// place and no part overlapping another (classify/self_overlap.h). Throws
+// InputError naming soup.source and the place (also for the contradictions of
+// a full classification: a triangle on two surfaces, a boundary or interface
 // triangle on none, a curve whose edges lie on different surfaces);
 // UsageError if params do not validate().
 ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params = {},

@@ -3,6 +3,8 @@
 #include "predicates/predicates.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Intersections_3/Segment_3_Triangle_3.h>
+#include <CGAL/Intersections_3/Triangle_3_Triangle_3.h>
 #include <CGAL/Interval_nt.h>
 #include <CGAL/Mpzf.h>
 
@@ -76,6 +78,14 @@ namespace detail {
 Sign orient3d_exact(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
   // CGAL's orientation(p,q,r,s) is the sign of det[q-p, r-p, s-p] (filtered, exact).
   return to_sign(static_cast<int>(CGAL::orientation(kp(a), kp(b), kp(c), kp(d))));
+}
+Sign orient2d_exact(double ax, double ay, double bx, double by, double cx, double cy) {
+  return filtered_sign(
+      [&](auto zero) {
+        using NT = decltype(zero);
+        return (NT(bx) - NT(ax)) * (NT(cy) - NT(ay)) - (NT(by) - NT(ay)) * (NT(cx) - NT(ax));
+      },
+      predicate_counters().overlap_exact);
 }
 Sign insphere_exact(const Point3& a, const Point3& b, const Point3& c, const Point3& d, const Point3& e) {
   // side_of_oriented_sphere: ON_POSITIVE_SIDE means inside for positive tets.
@@ -309,6 +319,32 @@ Sign decomposition_tet_sign_inexact(const Point3& a, const Point3& b, std::span<
                                     std::span<const Point3> cell) {
   const double d = star_det<double>(a, b, face, cell);
   return d > 0 ? Sign::Negative : (d < 0 ? Sign::Positive : Sign::Zero);
+}
+
+Sign orient3d_centroid(const Point3& a, const Point3& b, const Point3& c, const Point3& p, const Point3& q,
+                       const Point3& r) {
+  return filtered_sign(
+      [&](auto zero) {
+        using NT = decltype(zero);
+        const V3<NT> u = sub<NT>(b, a), v = sub<NT>(c, a);
+        const V3<NT> gp = sub<NT>(p, a), gq = sub<NT>(q, a), gr = sub<NT>(r, a);
+        const V3<NT> g{gp.x + gq.x + gr.x, gp.y + gq.y + gr.y, gp.z + gq.z + gr.z};
+        return dot3(cross3(u, v), g);
+      },
+      predicate_counters().overlap_exact);
+}
+
+Sign coplanar_orientation(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
+  return to_sign(static_cast<int>(CGAL::coplanar_orientation(kp(a), kp(b), kp(c), kp(d))));
+}
+
+bool segment_meets_triangle(const Point3& p, const Point3& q, const Point3& a, const Point3& b, const Point3& c) {
+  return CGAL::do_intersect(K::Segment_3(kp(p), kp(q)), K::Triangle_3(kp(a), kp(b), kp(c)));
+}
+
+bool triangles_meet(const Point3& a, const Point3& b, const Point3& c, const Point3& p, const Point3& q,
+                    const Point3& r) {
+  return CGAL::do_intersect(K::Triangle_3(kp(a), kp(b), kp(c)), K::Triangle_3(kp(p), kp(q), kp(r)));
 }
 
 }  // namespace polydual

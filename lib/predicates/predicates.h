@@ -78,13 +78,44 @@ inline Sign decomposition_tet_sign(const Point3& a, const Point3& b, std::span<c
 Sign decomposition_tet_sign_inexact(const Point3& a, const Point3& b, std::span<const Point3> face,
                                     std::span<const Point3> cell);
 
+// --- For the input's self-overlap check (classify/self_overlap.h). Triangles
+// must be non-degenerate and segments of positive length (the callers pass
+// faces and edges of positively oriented tets).
+
+// Sign of det[b-a, c-a] for points of a plane given by two coordinates:
+// Positive iff (a, b, c) turn counterclockwise. Shewchuk's stage-A static
+// filter, then an interval filter and an exact Mpzf fallback. Applied to two
+// coordinates of 3D points, it decides orientations inside a coordinate plane
+// exactly (dropping the third coordinate is exact).
+inline Sign orient2d(double ax, double ay, double bx, double by, double cx, double cy);
+
+// Sign of orient3d(a, b, c, g) for g = (p + q + r) / 3, the centroid of the
+// triangle (p, q, r), without rounding g: the sign of
+// det[b-a, c-a, (p-a) + (q-a) + (r-a)] (interval filter, exact Mpzf fallback).
+Sign orient3d_centroid(const Point3& a, const Point3& b, const Point3& c, const Point3& p, const Point3& q,
+                       const Point3& r);
+
+// For coplanar a, b, c, d, a, b, c not collinear: Positive iff c and d lie on
+// the same side of the line ab in their plane, Zero iff d lies on that line,
+// Negative iff on opposite sides (CGAL::coplanar_orientation).
+Sign coplanar_orientation(const Point3& a, const Point3& b, const Point3& c, const Point3& d);
+
+// Whether the closed segment [p, q] and the closed triangle (a, b, c) have a
+// point in common (CGAL's do_intersect on the filtered Epick kernel).
+bool segment_meets_triangle(const Point3& p, const Point3& q, const Point3& a, const Point3& b, const Point3& c);
+
+// Whether the closed triangles (a, b, c) and (p, q, r) have a point in common.
+bool triangles_meet(const Point3& a, const Point3& b, const Point3& c, const Point3& p, const Point3& q,
+                    const Point3& r);
+
 // How often the exact paths ran (relaxed atomics; for reports and benchmarks).
 // Only the rare exact fallbacks touch these shared counters: the callers know
 // how many predicates they evaluated (no contended write on the hot path).
 struct PredicateCounters {
   std::atomic<std::uint64_t> star_exact{0};
   std::atomic<std::uint64_t> circ_exact{0};
-  void reset() { star_exact = circ_exact = 0; }
+  std::atomic<std::uint64_t> overlap_exact{0};   // orient2d, orient3d_centroid
+  void reset() { star_exact = circ_exact = overlap_exact = 0; }
 };
 PredicateCounters& predicate_counters();
 // The star_exact fallbacks of the calling thread alone (never reset): a caller

@@ -11,6 +11,7 @@ namespace detail {
 
 // CGAL's filtered exact predicates (predicates.cpp).
 [[gnu::noinline]] Sign orient3d_exact(const Point3& a, const Point3& b, const Point3& c, const Point3& d);
+[[gnu::noinline]] Sign orient2d_exact(double ax, double ay, double bx, double by, double cx, double cy);
 [[gnu::noinline]] Sign insphere_exact(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
                                       const Point3& e);
 
@@ -47,6 +48,17 @@ inline Sign orient3d(const Point3& a, const Point3& b, const Point3& c, const Po
   constexpr double eps = DBL_EPSILON / 2;
   const Sign s = detail::negated_if_certain(det, perm, (7.0 + 56.0 * eps) * eps, 1e-250, 1e250);
   return s != Sign::Zero ? s : detail::orient3d_exact(a, b, c, d);
+}
+
+inline Sign orient2d(double ax, double ay, double bx, double by, double cx, double cy) {
+  // Shewchuk's orient2d stage A (errboundA = (3 + 16 eps) eps times the sum of
+  // the two products' magnitudes) on differences to c: the same determinant
+  // as det[b-a, c-a]. Undecided, tiny or huge: the exact version.
+  const double left = (ax - cx) * (by - cy), right = (ay - cy) * (bx - cx), det = left - right;
+  const double sum = std::fabs(left) + std::fabs(right);
+  constexpr double eps = DBL_EPSILON / 2;
+  const Sign s = detail::negated_if_certain(-det, sum, (3.0 + 16.0 * eps) * eps, 1e-250, 1e250);
+  return s != Sign::Zero ? s : detail::orient2d_exact(ax, ay, bx, by, cx, cy);
 }
 
 inline Sign insphere(const Point3& a, const Point3& b, const Point3& c, const Point3& d, const Point3& e) {
