@@ -197,8 +197,9 @@ std::vector<std::size_t> tets_oriented(const Compacted& c, Sign sign) {
                                                std::to_string(n - bad.size()) + ")"
                                          : " inverted (positive orientation, against the other " +
                                                std::to_string(n - bad.size()) + ", negative ones)";
-  throw InputError(s.source, place, std::to_string(bad.size()) + " of " + std::to_string(n) + " tets are" + what + ": " +
-                                        tet_list(bad) + "; a mesh must orient all its tets the same way");
+  throw InputError(s.source, place, std::to_string(bad.size()) + " of " + std::to_string(n) +
+                                        (bad.size() == 1 ? " tets is" : " tets are") + what + ": " + tet_list(bad) +
+                                        "; a mesh must orient all its tets the same way");
 }
 
 // EXACT: the orientation of every tet by orient3d (lib/predicates), in the
