@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <sstream>
 #include <string>
 #include <unistd.h>
@@ -23,8 +24,10 @@
 #include "classify/classify.h"
 #include "core/error.h"
 #include "generate/random_mesh.h"
+#include "io/medit_io.h"
 #include "io/msh_reader.h"
 #include "io/read_tet_mesh.h"
+#include "io/vtu_reader.h"
 #include "mesh/validate.h"
 #include "pipeline/convert.h"
 #include "run_command.h"
@@ -438,6 +441,63 @@ TEST(IoProducers, GmshEmptyModelHoldsNoTetrahedra) {
     EXPECT_THAT(error_of([&] { read_msh_file(square); }),
                 HasSubstr("the file holds no tetrahedra ($Elements has none, only "));
   }
+}
+
+// ---- the fuzzers' regression seeds (fuzz/regressions), replayed
+
+// The reader a seed is for ('g' Gmsh, 'm' Medit, 'v' VTU, as the pipeline
+// fuzzer's first byte), or 0 for the others (TetGen's three files in one,
+// polyhedral VTUs).
+char reader_of(const std::string& name, std::string& bytes) {
+  auto starts = [&](const char* p) { return name.rfind(p, 0) == 0; };
+  if (starts("msh_")) return 'g';
+  if (starts("medit_")) return 'm';
+  if (starts("vtu_") && !starts("vtu_poly_")) return 'v';
+  if (starts("pipeline_") && !bytes.empty()) {
+    const char c = bytes[0];
+    bytes.erase(0, 1);
+    return c == 'g' || c == 'm' || c == 'v' ? c : 0;
+  }
+  return 0;
+}
+
+// Every seed reads and classifies to a mesh or an InputError, nothing else;
+// the seeds of the producers' files give what they were added for.
+TEST(IoProducers, FuzzRegressionsReplay) {
+  const fs::path dir = fs::path(POLYDUAL_SOURCE_DIR) / "fuzz" / "regressions";
+  std::map<std::string, std::string> outcome;  // seed -> warnings or error
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    const std::string name = entry.path().filename().string();
+    std::string bytes = slurp(entry.path().string());
+    const char reader = reader_of(name, bytes);
+    if (!reader) continue;
+    std::string& out = outcome[name];
+    try {
+      const TetSoup s = reader == 'g'   ? read_msh(bytes, name)
+                        : reader == 'm' ? read_medit(bytes, name)
+                                        : read_vtu(bytes, name);
+      for (const std::string& w : s.warnings) out += w + "\n";
+      const ClassifiedTetMesh m = classify(s);
+      for (const std::string& w : m.classification_warnings()) out += w + "\n";
+    } catch (const InputError& e) {
+      out += std::string("error: ") + e.what();
+    }
+  }
+  EXPECT_GE(outcome.size(), 20u);
+  EXPECT_THAT(outcome["msh_netgen_v2_000000_negative.msh"], HasSubstr("all 2 tets are " + kFlipped));
+  EXPECT_THAT(outcome["pipeline_netgen_all_negative"], HasSubstr("all 2 tets are " + kFlipped));
+  EXPECT_THAT(outcome["msh_v20_physical_names_without_dim.msh"], HasSubstr("all 1 tet is " + kFlipped));
+  EXPECT_THAT(outcome["msh_homology_chains.msh"], HasSubstr("ignored 3 homology and cohomology chains (H^0{1}1, "
+                                                            "H_1{1}1, H_3{1},{2}1; 6 elements, 1 volume)"));
+  EXPECT_THAT(outcome["msh_homology_chains_save_all.msh"],
+              HasSubstr("ignored 3 homology and cohomology chains (H_1{1}1, H^1{1}1, H_3{1},{2}1;"));
+  EXPECT_EQ(outcome["msh_homology_chains_save_all.msh"].find("error"), std::string::npos);
+  EXPECT_THAT(outcome["pipeline_mixed_orientation"], HasSubstr("tet 2 is inverted (negative orientation)"));
+  for (const char* empty : {"msh_empty_model.msh", "medit_surface_only.mesh", "vtu_no_piece.vtu"})
+    EXPECT_THAT(outcome[empty], HasSubstr(std::string("error: ") + empty + ": ")) << empty;
+  EXPECT_THAT(outcome["msh_empty_model.msh"], HasSubstr("end of file: the file holds no tetrahedra (no $Nodes"));
+  EXPECT_THAT(outcome["medit_surface_only.mesh"], HasSubstr("end of file: the file holds no tetrahedra (no Tetrahedra"));
+  EXPECT_THAT(outcome["vtu_no_piece.vtu"], HasSubstr("line 1: the file holds no tetrahedra (no <Piece>"));
 }
 
 }  // namespace
