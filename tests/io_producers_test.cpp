@@ -139,6 +139,9 @@ TEST(IoProducers, NetgenGmsh2ExportIsReadAndFlipped) {
   EXPECT_EQ(m.num_tets(), kNetgenTets);
   EXPECT_EQ(m.model().count(2), 7u);  // 6 box sides and the hole
   EXPECT_EQ(m.model().count(1), 14u);  // 12 box edges and the hole's two circles
+  // Under the name Netgen proposes for the export.
+  const std::string gmsh2 = write("holed_box.gmsh2", slurp(kNetgenFile));
+  EXPECT_EQ(read_tet_mesh(gmsh2).tets.size(), kNetgenTets);
 }
 
 TEST(IoProducers, NetgenDualIsTheDualOfTheFlippedMesh) {
