@@ -226,11 +226,11 @@ struct Reader {
   // cannot be told from the model's and are read as model entities.
   void warn_unmarked_chains(const std::vector<ElementRun>& chains) {
     std::string unmarked;
-    for (const auto& [key, name] : names) {
-      if (!is_chain_name(name)) continue;
+    for (const auto& entry : names) {  // not a structured binding: clang 14's lambdas cannot capture one
+      if (!is_chain_name(entry.second)) continue;
       const bool marked = std::any_of(chains.begin(), chains.end(),
-                                      [&](const ElementRun& r) { return r.dim == key.first && r.group == key.second; });
-      if (!marked) unmarked += (unmarked.empty() ? "" : ", ") + name;
+                                      [&](const ElementRun& r) { return r.dim == entry.first.first && r.group == entry.first.second; });
+      if (!marked) unmarked += (unmarked.empty() ? "" : ", ") + entry.second;
     }
     if (!unmarked.empty())
       soup.warnings.push_back(soup.source + ": names homology or cohomology chains (" + unmarked +
