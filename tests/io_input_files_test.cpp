@@ -359,7 +359,7 @@ TEST_F(InputFiles, EmptyFilesSayTheyAreEmpty) {
                   .message,
               HasSubstr("e2.msh: line 7: the file holds no tetrahedra ($Elements has none)"));
   EXPECT_THAT(read_in_child(write("e3.msh", "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n")).message,
-              HasSubstr("e3.msh: end of file: missing $Nodes section"));
+              HasSubstr("e3.msh: end of file: the file holds no tetrahedra (no $Nodes and no $Elements section)"));
 }
 
 }  // namespace

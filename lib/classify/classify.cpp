@@ -55,6 +55,7 @@ struct Compacted {
   std::vector<std::uint32_t> remap;         // soup vertex index -> vertex id (or -1)
   std::vector<std::uint32_t> input_vertex;  // vertex id -> soup vertex index
   std::vector<std::uint32_t> input_tet;     // tet id -> soup tet index
+  std::size_t flipped = 0;                   // tets turned positive (all of them, or none)
 };
 
 // Indices in range, no repeated vertex in a tet, finite coordinates of the
@@ -164,23 +165,66 @@ Compacted spatial_order(const TetSoup& s, std::vector<char> used) {
   return c;
 }
 
-// EXACT: the orientation of every tet, checked in the new (cache-friendly)
-// order; on a failure, the first failing tet in input order is reported.
-void check_orientations(const TetSoup& s, const Compacted& c) {
-  auto orientation_error = [&](std::size_t t) {
-    const auto& tv = s.tets[t];
-    const Sign o = orient3d(s.points[tv[0]], s.points[tv[1]], s.points[tv[2]], s.points[tv[3]]);
-    if (o == Sign::Negative)
-      throw InputError(s.source, "tet " + std::to_string(t + 1),
-                       "tet " + std::to_string(t + 1) + " is inverted (negative orientation)");
-    if (o == Sign::Zero)
-      throw InputError(s.source, "tet " + std::to_string(t + 1),
-                       "tet " + std::to_string(t + 1) + " has zero volume (degenerate)");
-  };
-  for (const auto& tv : c.tets)
-    if (orient3d(c.points[tv[0].idx], c.points[tv[1].idx], c.points[tv[2].idx], c.points[tv[3].idx]) !=
-        Sign::Positive)
-      for (std::size_t t = 0; t < s.tets.size(); ++t) orientation_error(t);
+// "tets 3, 8, 12": up to ten 0-based input indices, 1-based, then how many more.
+std::string tet_list(const std::vector<std::size_t>& tets) {
+  std::string out = tets.size() == 1 ? "tet " : "tets ";
+  for (std::size_t i = 0; i < tets.size() && i < 10; ++i) out += (i ? ", " : "") + std::to_string(tets[i] + 1);
+  if (tets.size() > 10) out += " and " + std::to_string(tets.size() - 10) + " more";
+  return out;
+}
+
+// The input indices (ascending) of the tets whose exact orientation is `sign`.
+std::vector<std::size_t> tets_oriented(const Compacted& c, Sign sign) {
+  std::vector<std::size_t> out;
+  for (std::size_t k = 0; k < c.tets.size(); ++k) {
+    const auto& tv = c.tets[k];
+    if (orient3d(c.points[tv[0].idx], c.points[tv[1].idx], c.points[tv[2].idx], c.points[tv[3].idx]) == sign)
+      out.push_back(c.input_tet[k]);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// Mixed orientations: the tets of the smaller side are the inverted ones
+// (ties: the negative ones, Gmsh's convention being positive).
+[[noreturn]] void mixed_orientation_error(const TetSoup& s, const Compacted& c, std::size_t negative) {
+  const std::size_t n = c.tets.size();
+  const bool name_negative = negative <= n - negative;
+  const std::vector<std::size_t> bad = tets_oriented(c, name_negative ? Sign::Negative : Sign::Positive);
+  const std::string place = "tet " + std::to_string(bad.front() + 1);
+  if (name_negative && bad.size() == 1)
+    throw InputError(s.source, place, place + " is inverted (negative orientation)");
+  const std::string what = name_negative ? " inverted (negative orientation, against the other " +
+                                               std::to_string(n - bad.size()) + ")"
+                                         : " inverted (positive orientation, against the other " +
+                                               std::to_string(n - bad.size()) + ", negative ones)";
+  throw InputError(s.source, place, std::to_string(bad.size()) + " of " + std::to_string(n) +
+                                        (bad.size() == 1 ? " tets is" : " tets are") + what + ": " + tet_list(bad) +
+                                        "; a mesh must orient all its tets the same way");
+}
+
+// EXACT: the orientation of every tet by orient3d (lib/predicates), in the
+// new (cache-friendly) order. A degenerate tet is an error naming the first
+// in input order. When every tet is negatively oriented, the mesh follows the
+// other convention (Netgen's Gmsh export writes every tet so): each tet's last
+// two vertices are swapped, which makes it positive, and the count is
+// returned; mixed orientations are an error naming the inverted tets.
+std::size_t orient_tets(const TetSoup& s, Compacted& c) {
+  std::size_t negative = 0, zero = 0;
+  for (const auto& tv : c.tets) {
+    const Sign o = orient3d(c.points[tv[0].idx], c.points[tv[1].idx], c.points[tv[2].idx], c.points[tv[3].idx]);
+    negative += o == Sign::Negative;
+    zero += o == Sign::Zero;
+  }
+  if (zero > 0) {
+    const std::size_t t = tets_oriented(c, Sign::Zero).front();
+    throw InputError(s.source, "tet " + std::to_string(t + 1),
+                     "tet " + std::to_string(t + 1) + " has zero volume (degenerate)");
+  }
+  if (negative == 0) return 0;
+  if (negative < c.tets.size()) mixed_orientation_error(s, c, negative);
+  for (auto& tv : c.tets) std::swap(tv[2], tv[3]);
+  return negative;
 }
 
 Compacted validate_and_compact(const TetSoup& s, ClassifyStats& st) {
@@ -193,7 +237,7 @@ Compacted validate_and_compact(const TetSoup& s, ClassifyStats& st) {
   Compacted c = spatial_order(s, std::move(used));
   st.seconds_order = since(t0);
   t0 = Clock::now();
-  check_orientations(s, c);
+  c.flipped = orient_tets(s, c);
   st.seconds_validate += since(t0);
   return c;
 }
@@ -837,6 +881,10 @@ ClassifiedTetMesh classify(const TetSoup& soup, const ClassifyParams& params, Cl
                                                        std::move(c.regions), std::move(c.input_vertex),
                                                        std::move(c.input_tet));
   st.seconds_topology = since(t0);
+  if (c.flipped > 0)
+    TetMeshBuilder::classification_warnings(m).push_back(
+        soup.source + ": all " + std::to_string(c.flipped) + (c.flipped == 1 ? " tet is" : " tets are") +
+        " negatively oriented (the producer's convention): flipped");
   t0 = Clock::now();
   check_self_overlap(m);
   st.seconds_overlap = since(t0);

@@ -42,9 +42,11 @@ struct ClassifyStats {
 };
 
 // Validates on load (design §2): finite coordinates, indices in range, every tet
-// positively oriented by the exact predicate (inverted or zero-volume tets are
-// errors naming the tet), conformity, unused vertices, no two vertices at one
-// place and no part overlapping another (classify/self_overlap.h). Throws
+// positively oriented by the exact predicate (zero-volume tets, and tets
+// oriented against the others, are errors naming the tets; a mesh whose tets
+// are all negatively oriented is flipped whole, with a warning in
+// classification_warnings()), conformity, unused vertices, no two vertices at
+// one place and no part overlapping another (classify/self_overlap.h). Throws
 // InputError naming soup.source and the place (also for the contradictions of
 // a full classification: a triangle on two surfaces, a boundary or interface
 // triangle on none, a curve whose edges lie on different surfaces);

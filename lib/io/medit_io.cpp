@@ -204,18 +204,27 @@ struct Reader {
     }
   }
 
+  [[noreturn]] void no_tetrahedra() const {
+    if (tetrahedra_line)
+      throw InputError(cur.source(), "line " + std::to_string(tetrahedra_line),
+                       "the file holds no tetrahedra (its Tetrahedra section is empty)");
+    const std::size_t others = soup.triangles.size() + soup.edges.size() + soup.corners.size();
+    throw InputError(cur.source(), "end of file",
+                     std::string("the file holds no tetrahedra (no ") +
+                         (vertices_line ? "Tetrahedra section" : "Vertices and no Tetrahedra section") +
+                         (others ? ", only " + io::count_of(others, "triangle, edge or corner", "triangles, edges and corners")
+                                 : std::string()) + ")");
+  }
+
   TetSoup read() {
     if (cur.at_end()) throw InputError(cur.source(), "", "the file is empty");
     while (!cur.at_end() && section(cur.token("keyword"))) {
     }
-    // A section that is absent is missing; one that is present but empty
-    // leaves the file without a mesh.
+    // A file without tets (an empty Tetrahedra section, none at all as in a
+    // surface mesh, or not even Vertices) holds no mesh to convert.
     if (!have_dimension) throw InputError(cur.source(), "end of file", "missing 'Dimension 3'");
+    if (soup.tets.empty()) no_tetrahedra();
     if (!vertices_line) throw InputError(cur.source(), "end of file", "missing Vertices section");
-    if (!tetrahedra_line) throw InputError(cur.source(), "end of file", "missing Tetrahedra section");
-    if (soup.tets.empty())
-      throw InputError(cur.source(), "line " + std::to_string(tetrahedra_line),
-                       "the file holds no tetrahedra (its Tetrahedra section is empty)");
     soup.source = cur.source();
     merge_two_sided_triangles(soup);
     io::drop_unattached(soup);

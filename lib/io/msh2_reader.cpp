@@ -1,6 +1,10 @@
-// Gmsh msh 2.2: $Nodes "id x y z", $Elements "id type ntags tags... nodes...".
+// Gmsh msh 2.x: $Nodes "id x y z", $Elements "id type ntags tags... nodes...".
 // Binary files keep the counts as text lines but the records as native ints and
 // doubles; binary $Elements come in blocks headed by (type, count, ntags).
+// Versions 2.0 and 2.1 are read as 2.2 (Gmsh's own reader does the same): only
+// the third and later element tags (partitions, not read) and 2.0's
+// $PhysicalNames without dimensions differ. Netgen's "Gmsh2 Format" export
+// writes "2.000000 0 8" with 2.2's layout.
 #include <cstdint>
 #include <limits>
 #include <unordered_map>
@@ -26,6 +30,8 @@ struct Reader {
   std::map<std::pair<int, std::int32_t>, std::string> names;
   std::map<std::pair<int, std::int32_t>, std::set<std::int32_t>> physicals;  // (dim, tag) -> soup tags
   int max_order = 1;
+  int minor = 2;                   // the x of version 2.x
+  std::vector<ElementRun> runs;    // consecutive elements of one (dim, physical, elementary)
 
   [[noreturn]] void fail(const std::string& what) const { cur.fail(what); }
 
@@ -68,11 +74,29 @@ struct Reader {
     return tags.size() > 1 ? static_cast<std::int32_t>(tags[1]) : tag_of(tags);
   }
 
+  static std::size_t count_of_dim(const TetSoup& s, int dim) {
+    return dim == 3 ? s.tets.size() : dim == 2 ? s.triangles.size() : dim == 1 ? s.edges.size() : s.corners.size();
+  }
+
+  // Extends the run of the previous element or starts one (the element is
+  // about to be appended at the end of its kind's vector).
+  void note_run(int dim, const std::vector<std::int64_t>& tags) {
+    if (tags.empty() || tags[0] == 0) return;  // in no physical group: never a chain
+    const std::int32_t group = std::int32_t(tags[0]), entity = elementary_of(tags);
+    const std::size_t at = count_of_dim(soup, dim);
+    if (!runs.empty()) {
+      ElementRun& r = runs.back();
+      if (r.dim == dim && r.group == group && r.entity == entity && r.end == at) return void(++r.end);
+    }
+    runs.push_back({dim, entity, group, at, at + 1});
+  }
+
   void add(Use use, std::int64_t type, std::int64_t id, const std::int64_t* nodes, const std::vector<std::int64_t>& tags) {
     if (use == Use::ignore) return;
     const std::int32_t tag = tag_of(tags);
     const int dim = use == Use::tet ? 3 : use == Use::triangle ? 2 : use == Use::line ? 1 : 0;
     if (!tags.empty() && tags[0] != 0) physicals[{dim, tag}].insert(tag);
+    note_run(dim, tags);
     max_order = std::max(max_order, element_order(type));
     switch (use) {
       case Use::tet:
@@ -155,21 +179,69 @@ struct Reader {
     expect_end(cur, "Elements");
   }
 
-  // $PhysicalNames is text even in binary files: "n" then "dim tag "name"".
+  // $PhysicalNames is text even in binary files: "n" then "dim tag "name""
+  // (2.1, 2.2) or "tag "name"" (2.0, whose names hold for every dimension;
+  // the 2.1 layout is accepted there too). Unknown dimension: kAnyDim.
+  static constexpr int kAnyDim = -1;
   void physical_names() {
     const std::int64_t n = cur.integer_in("number of physical names", 0, 1 << 30);
-    cur.check_count(n, 6, "physical name");
+    cur.check_count(n, minor == 0 ? 4 : 6, "physical name");
     for (std::int64_t i = 0; i < n; ++i) {
-      const int dim = static_cast<int>(cur.integer_in("physical dimension", 0, 3));
-      const std::int32_t t = static_cast<std::int32_t>(tag_value(cur.integer("physical tag")));
-      names[{dim, t}] = physical_name(cur);
+      const std::int64_t first = cur.integer(minor == 0 ? "physical tag" : "physical dimension");
+      int dim = kAnyDim;
+      std::int64_t t = first;
+      if (minor > 0 || cur.peek().substr(0, 1) != "\"") {
+        if (first < 0 || first > 3) fail("physical dimension " + std::to_string(first) + " out of range (0..3)");
+        dim = static_cast<int>(first);
+        t = cur.integer("physical tag");
+      }
+      names[{dim, static_cast<std::int32_t>(tag_value(t))}] = physical_name(cur);
     }
     expect_end(cur, "PhysicalNames");
+  }
+
+  // 2.0's names without a dimension name the groups of that tag in every
+  // dimension that has one (a name no element uses names nothing).
+  void resolve_dimensionless_names() {
+    for (auto it = names.begin(); it != names.end() && it->first.first == kAnyDim;) {
+      for (int d = 0; d <= 3; ++d)
+        if (physicals.count({d, it->first.second})) names.try_emplace({d, it->first.second}, it->second);
+      it = names.erase(it);
+    }
+  }
+
+  // Gmsh's homology and cohomology chains: runs whose physical group has a
+  // chain's name (io/unattached.h).
+  std::vector<ElementRun> chain_runs() const {
+    std::vector<ElementRun> out;
+    for (const ElementRun& r : runs) {
+      const auto n = names.find({r.dim, r.group});
+      if (n != names.end() && is_chain_name(n->second)) out.push_back(r);
+    }
+    return out;
+  }
+
+  // Chains named in $PhysicalNames that no element is in: msh 2 saved with
+  // -save_all gives every element physical tag 0, so the chains' elements
+  // cannot be told from the model's and are read as model entities.
+  void warn_unmarked_chains(const std::vector<ElementRun>& chains) {
+    std::string unmarked;
+    for (const auto& entry : names) {  // not a structured binding: clang 14's lambdas cannot capture one
+      if (!is_chain_name(entry.second)) continue;
+      const bool marked = std::any_of(chains.begin(), chains.end(),
+                                      [&](const ElementRun& r) { return r.dim == entry.first.first && r.group == entry.first.second; });
+      if (!marked) unmarked += (unmarked.empty() ? "" : ", ") + entry.second;
+    }
+    if (!unmarked.empty())
+      soup.warnings.push_back(soup.source + ": names homology or cohomology chains (" + unmarked +
+                              ") that no element is in (msh 2 saved with -save_all): their elements, if any, are read "
+                              "as model entities (save without -save_all, or as msh 4, to have them dropped)");
   }
 
   // Groups from the physical tags the elements carry (each is its own soup
   // tag) and the names; then the unattached elements are dropped.
   void finish() {
+    resolve_dimensionless_names();
     for (const auto& [key, name] : names) physicals[key];
     for (const auto& [key, tags] : physicals) {
       auto n = names.find(key);
@@ -177,14 +249,17 @@ struct Reader {
                              std::vector<std::int32_t>(tags.begin(), tags.end())});
     }
     if (const std::string w = high_order_warning(soup.source, max_order); !w.empty()) soup.warnings.push_back(w);
+    const std::vector<ElementRun> chains = chain_runs();
+    warn_unmarked_chains(chains);
+    drop_chains(soup, origins, chains);
     drop_unattached(soup, origins);
   }
 };
 
 }  // namespace
 
-TetSoup read_msh2(TextCursor& cur, bool binary) {
-  Reader r{cur, binary, {}, {}, {}, {}, {}, 1};
+TetSoup read_msh2(TextCursor& cur, bool binary, int minor) {
+  Reader r{cur, binary, {}, {}, {}, {}, {}, 1, minor, {}};
   r.soup.source = cur.source();
   const std::string elements_place = read_sections(cur, [&](std::string_view name) {
     if (name == "Nodes") r.nodes();

@@ -58,6 +58,7 @@ struct Reader {
   std::array<std::set<std::int32_t>, 4> with_elements;  // model entities given elements
   std::size_t boundary_elements = 0, ghost_elements = 0, merged_nodes = 0;
   int max_order = 1;
+  std::vector<ElementRun> runs;  // the kept elements of each block (group set in finish)
 
   [[noreturn]] void fail(const std::string& what) const { cur.fail(what); }
 
@@ -304,6 +305,9 @@ struct Reader {
     if (keep && n > 0) {
       with_elements[dim].insert(t.model);
       max_order = std::max(max_order, element_order(type));
+      const std::size_t at = dim == 3 ? soup.tets.size() : dim == 2 ? soup.triangles.size()
+                             : dim == 1 ? soup.edges.size() : soup.corners.size();
+      runs.push_back({dim, t.model, 0, at, at + std::size_t(n)});
     }
     if (use != Use::ignore && t.kind == Target::partition_boundary) boundary_elements += n;
     if (use != Use::ignore && t.kind == Target::ghost) ghost_elements += n;
@@ -350,7 +354,31 @@ struct Reader {
   void finish();
   bool warn_missing();
   void make_groups();
+  bool is_chain(int dim, std::int32_t entity) const;
+  std::vector<ElementRun> chain_runs() const;
 };
+
+// A model entity that Gmsh's homology solver made: every physical group it
+// is in has a chain's name (io/unattached.h).
+bool Reader::is_chain(int dim, std::int32_t entity) const {
+  const auto e = entities[dim].find(entity);
+  if (e == entities[dim].end() || e->second.physicals.empty()) return false;
+  for (std::int32_t p : e->second.physicals) {
+    const auto n = names.find({dim, p});
+    if (n == names.end() || !is_chain_name(n->second)) return false;
+  }
+  return true;
+}
+
+std::vector<ElementRun> Reader::chain_runs() const {
+  std::vector<ElementRun> out;
+  for (ElementRun r : runs)
+    if (is_chain(r.dim, r.entity)) {
+      r.group = entities[r.dim].at(r.entity).physicals.front();
+      out.push_back(r);
+    }
+  return out;
+}
 
 // A curve Gmsh collapsed to a point (as at a sphere's pole) gets no element;
 // its $Entities box is then within Gmsh's tolerance of a point.
@@ -413,7 +441,9 @@ void Reader::finish() {
   if (const std::string w = high_order_warning(soup.source, max_order); !w.empty()) soup.warnings.push_back(w);
   ElementOrigins origins;
   for (int d = 0; d < 3; ++d)
-    for (const auto& [t, e] : entities[d]) origins.declared[d].push_back(t);
+    for (const auto& [t, e] : entities[d])
+      if (!is_chain(d, t)) origins.declared[d].push_back(t);
+  drop_chains(soup, origins, chain_runs());
   drop_unattached(soup, origins);
   soup.full_classification = complete && !soup.triangles.empty();
 }
@@ -421,7 +451,7 @@ void Reader::finish() {
 }  // namespace
 
 TetSoup read_msh4(TextCursor& cur, bool binary) {
-  Reader r{cur, binary, {}, {}, {}, false, {}, {}, 0, false, {}, {}, 0, 0, 0, 1};
+  Reader r{cur, binary, {}, {}, {}, false, {}, {}, 0, false, {}, {}, 0, 0, 0, 1, {}};
   r.soup.source = cur.source();
   bool have_nodes = false;
   const std::string elements_place = read_sections(cur, [&](std::string_view name) {

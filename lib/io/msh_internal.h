@@ -86,7 +86,8 @@ void expect_end(TextCursor& cur, std::string_view name);
 // The section loop both versions share: for every "$Name" until the end of
 // the file, calls read(name), which returns false for a section it does not
 // know (skipped up to $EndName); $Nodes must come once and before the one
-// $Elements, and both must be present. Returns the place of $Elements.
+// $Elements, and both must be present (else the file holds no tetrahedra).
+// Returns the place of $Elements.
 template <class ReadSection>
 std::string read_sections(TextCursor& cur, ReadSection&& read) {
   bool have_nodes = false, have_elements = false;
@@ -106,8 +107,12 @@ std::string read_sections(TextCursor& cur, ReadSection&& read) {
     }
     if (!read(name)) skip_section(cur, name);
   }
-  if (!have_nodes) throw InputError(cur.source(), "end of file", "missing $Nodes section");
-  if (!have_elements) throw InputError(cur.source(), "end of file", "missing $Elements section");
+  // Gmsh writes an empty model as $MeshFormat (and $Entities) alone.
+  if (!have_nodes && !have_elements)
+    throw InputError(cur.source(), "end of file", "the file holds no tetrahedra (no $Nodes and no $Elements section)");
+  if (!have_elements)
+    throw InputError(cur.source(), "end of file",
+                     "the file holds no tetrahedra (no $Elements section after $Nodes: is it cut short?)");
   return elements_place;
 }
 
@@ -117,7 +122,11 @@ std::string read_sections(TextCursor& cur, ReadSection&& read) {
 void require_tets(const TetSoup& soup, const TextCursor& cur, const std::string& elements_place);
 
 // Section loops after $MeshFormat (the cursor stands after $EndMeshFormat).
-TetSoup read_msh2(TextCursor& cur, bool binary);
+// msh 2.0, 2.1 and 2.2 share their layout (Gmsh reads all three with one
+// reader); `minor` (0, 1 or 2) selects what differs: 2.0's $PhysicalNames
+// records have no dimension, and a third element tag is a partition before
+// 2.2 but a partition count in 2.2 (neither is read).
+TetSoup read_msh2(TextCursor& cur, bool binary, int minor);
 TetSoup read_msh4(TextCursor& cur, bool binary);
 
 // The name of a $PhysicalNames record (the rest of the line, between the

@@ -98,6 +98,24 @@ double binary_coordinate(TextCursor& cur, const char* what) {
 
 namespace {
 
+// The version of $MeshFormat in tenths (22 for "2.2"), whatever its spelling:
+// Gmsh itself reads it as a double, so "2", "2.0" and Netgen's "2.000000" are
+// version 2.0 and "2.10" is 2.1. -1 when it is not a plain decimal number or
+// falls between tenths.
+int version_tenths(std::string_view v) {
+  std::size_t i = 0, digits = 0;
+  long whole = 0, tenth = 0;
+  for (; i < v.size() && v[i] >= '0' && v[i] <= '9' && whole < 1000; ++i, ++digits) whole = whole * 10 + (v[i] - '0');
+  if (digits == 0) return -1;
+  if (i < v.size() && v[i] == '.') {
+    ++i;
+    if (i < v.size() && v[i] >= '0' && v[i] <= '9') tenth = v[i++] - '0';
+    while (i < v.size() && v[i] == '0') ++i;  // "2.000000", "2.10": nothing below a tenth
+  }
+  if (i != v.size() || whole >= 1000) return -1;
+  return int(whole * 10 + tenth);
+}
+
 // $MeshFormat, then the sections of its version; the cursor names the source.
 TetSoup read_msh_from(io::TextCursor& cur) {
   const std::string& source = cur.source();
@@ -109,14 +127,9 @@ TetSoup read_msh_from(io::TextCursor& cur) {
   const std::int64_t file_type = cur.integer_in("file type", 0, 1);
   const std::int64_t data_size = cur.integer("data size");
   if (data_size != 8) cur.fail("data size " + std::to_string(data_size) + " not supported (only 8)");
-  int major = 0;
-  if (version == "2.2" || version == "2.1" || version == "2" || version == "2.0") {
-    major = 2;
-  } else if (version == "4.1") {
-    major = 4;
-  } else {
+  const int tenths = version_tenths(version);
+  if (tenths != 20 && tenths != 21 && tenths != 22 && tenths != 41)
     cur.fail("msh format version '" + io::quoted(version) + "' not supported (use 2.2 or 4.1)");
-  }
   const bool binary = file_type == 1;
   if (binary) {
     // The binary int 1 tells the writer's endianness; we only read files
@@ -128,7 +141,7 @@ TetSoup read_msh_from(io::TextCursor& cur) {
   }
   io::msh::expect_end(cur, "MeshFormat");
   cur.set_binary(binary);
-  TetSoup soup = major == 2 ? io::msh::read_msh2(cur, binary) : io::msh::read_msh4(cur, binary);
+  TetSoup soup = tenths == 41 ? io::msh::read_msh4(cur, binary) : io::msh::read_msh2(cur, binary, tenths % 10);
   soup.source = source;
   return soup;
 }

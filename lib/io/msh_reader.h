@@ -1,4 +1,5 @@
-// Gmsh .msh 2.2 and 4.1 reader, ASCII and binary (design §2).
+// Gmsh .msh 2.2 and 4.1 reader, ASCII and binary (design §2); 2.0 and 2.1 are
+// read as 2.2, the version however spelt ("2", "2.0", Netgen's "2.000000").
 //
 // Written by hand rather than through libgmsh because (1) errors must name the
 // exact line or byte, (2) the fuzzers need a memory-buffer API, and (3) libgmsh
@@ -16,9 +17,10 @@
 // elements for all its curves (but collapsed ones), surfaces and volumes (a
 // file saved with -save_all, or whose every entity is in a physical group).
 // msh2: every tag is the physical tag if nonzero, else the elementary tag.
-// Both: $PhysicalNames and the physical tags become soup.groups; input not
-// attached to the tets is dropped (io/unattached.h); other 3D element types
-// are errors; other lower-dimensional types are ignored.
+// Both: $PhysicalNames and the physical tags become soup.groups; homology and
+// cohomology chains that Gmsh added to the mesh, and input not attached to the
+// tets, are dropped (io/unattached.h); other 3D element types are errors;
+// other lower-dimensional types are ignored.
 #pragma once
 #include <string>
 #include <string_view>

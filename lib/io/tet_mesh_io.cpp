@@ -24,12 +24,14 @@ static std::string extension(const std::string& path) {
 
 TetSoup read_tet_mesh(const std::string& path) {
   const std::string ext = extension(path);
-  if (ext == ".msh") return read_msh_file(path);
+  // .gmsh2: the name Netgen proposes for its "Gmsh2 Format" export (msh 2.0).
+  if (ext == ".msh" || ext == ".gmsh2") return read_msh_file(path);
   if (ext == ".mesh") return read_medit_file(path);
   if (ext == ".node" || ext == ".ele") return read_tetgen_files(path);
   if (ext == ".vtu") return read_vtu_file(path);
   io::require_regular_file(path);  // a missing file or a device is reported as such first
-  throw InputError(path, "", "unknown mesh file extension '" + ext + "' (supported: .msh, .mesh, .node/.ele, .vtu)");
+  throw InputError(path, "", "unknown mesh file extension '" + ext +
+                                 "' (supported: .msh or .gmsh2, .mesh, .node/.ele, .vtu)");
 }
 
 void write_tet_mesh(const TetSoup& soup, const std::string& path) {

@@ -27,16 +27,17 @@ std::int32_t integer_attribute(io::TextCursor& cur, const char* what) {
   return static_cast<std::int32_t>(v);
 }
 
-// A count of the first line; 0 is an empty file (an error when `required`).
-std::int64_t header_count(io::TextCursor& cur, const char* what, const char* items, bool required) {
+// A count of the first line; 0 is an empty file (an error when `required`:
+// without nodes or tets the files hold no tetrahedra). `item` names one.
+std::int64_t header_count(io::TextCursor& cur, const char* what, const char* item, bool required) {
   if (cur.at_end()) throw InputError(cur.source(), "", "the file is empty");
   const std::int64_t n = cur.integer_in(what, 0, kMaxCount);
-  if (n == 0 && required) cur.fail(std::string("the file holds no ") + items + " (its count is 0)");
+  if (n == 0 && required) cur.fail(std::string("the file holds no tetrahedra (its ") + item + " count is 0)");
   return n;
 }
 
 std::int64_t read_nodes(io::TextCursor& cur, TetSoup& soup) {
-  const std::int64_t n = header_count(cur, "number of nodes", "nodes", true);
+  const std::int64_t n = header_count(cur, "number of nodes", "node", true);
   const std::int64_t dim = cur.integer("dimension");
   if (dim != 3) cur.fail("dimension " + std::to_string(dim) + " not supported (only 3)");
   const std::int64_t nattr = cur.integer_in("number of attributes", 0, 1000);
@@ -67,7 +68,7 @@ std::uint32_t vertex(io::TextCursor& cur, std::int64_t base, std::size_t n) {
 }
 
 void read_elements(io::TextCursor& cur, std::int64_t base, TetSoup& soup) {
-  const std::int64_t n = header_count(cur, "number of tetrahedra", "tetrahedra", true);
+  const std::int64_t n = header_count(cur, "number of tetrahedra", "tetrahedron", true);
   const std::int64_t per_tet = cur.integer("nodes per tetrahedron");
   if (per_tet != 4) cur.fail("tetrahedra with " + std::to_string(per_tet) + " nodes not supported (only linear, 4)");
   const std::int64_t nattr = cur.integer_in("number of attributes", 0, 1000);
@@ -93,7 +94,7 @@ void read_elements(io::TextCursor& cur, std::int64_t base, TetSoup& soup) {
 }
 
 void read_faces(io::TextCursor& cur, std::int64_t base, TetSoup& soup) {
-  const std::int64_t n = header_count(cur, "number of faces", "faces", false);
+  const std::int64_t n = header_count(cur, "number of faces", "face", false);
   const std::int64_t bmark = cur.integer_in("boundary marker flag", 0, 1);
   cur.check_count(n, 8 + 2 * bmark, "face");
   for (std::int64_t i = 0; i < n; ++i) {

@@ -1,6 +1,7 @@
 #include "io/unattached.h"
 
 #include <algorithm>
+#include <array>
 #include <set>
 #include <string>
 
@@ -46,7 +47,68 @@ void restrict_groups(TetSoup& soup) {
   }
 }
 
+// Removes the elements at the marked positions (stable), and the parallel
+// entries of `also` when it is not empty.
+template <class Element, class Parallel>
+void erase_marked(std::vector<Element>& elements, Parallel& also, const std::vector<char>& drop) {
+  std::size_t out = 0;
+  for (std::size_t i = 0; i < elements.size(); ++i) {
+    if (drop[i]) continue;
+    if (!also.empty()) also[out] = also[i];
+    elements[out++] = elements[i];
+  }
+  elements.resize(out);
+  if (!also.empty()) also.resize(out);
+}
+
+// Drops [begin, end) of every run of dimension dim from `elements`.
+template <class Element, class Parallel>
+std::size_t erase_runs(std::vector<Element>& elements, Parallel& also, const std::vector<ElementRun>& runs, int dim) {
+  std::vector<char> drop;
+  std::size_t n = 0;
+  for (const ElementRun& r : runs) {
+    if (r.dim != dim || r.begin >= r.end) continue;
+    if (drop.empty()) drop.assign(elements.size(), 0);
+    for (std::size_t i = r.begin; i < r.end && i < elements.size(); ++i) n += !drop[i], drop[i] = 1;
+  }
+  if (n > 0) erase_marked(elements, also, drop);
+  return n;
+}
+
 }  // namespace
+
+bool is_chain_name(std::string_view name) {
+  return name.size() >= 3 && name[0] == 'H' && (name[1] == '_' || name[1] == '^') && name[2] >= '0' && name[2] <= '3';
+}
+
+void drop_chains(TetSoup& soup, ElementOrigins& origins, const std::vector<ElementRun>& chains) {
+  if (chains.empty()) return;
+  std::size_t dropped = erase_runs(soup.tets, soup.tet_region, chains, 3);
+  dropped += erase_runs(soup.triangles, origins.triangle, chains, 2);
+  dropped += erase_runs(soup.edges, origins.edge, chains, 1);
+  dropped += erase_runs(soup.corners, origins.corner, chains, 0);
+  std::set<std::pair<int, std::int32_t>> entities, groups;
+  for (const ElementRun& r : chains) entities.insert({r.dim, r.entity}), groups.insert({r.dim, r.group});
+  std::array<std::size_t, 4> per_dim{};
+  for (const auto& [d, e] : entities) ++per_dim[d];
+  std::string names;
+  std::size_t named = 0;
+  std::erase_if(soup.groups, [&](const NamedGroup& g) {
+    if (!groups.count({g.dim, g.tag})) return false;
+    if (named++ < 6) names += (names.empty() ? "" : ", ") + (g.name.empty() ? std::to_string(g.tag) : g.name);
+    return true;
+  });
+  if (named > 6) names += " and " + std::to_string(named - 6) + " more";
+  soup.ignored.points += per_dim[0];
+  soup.ignored.curves += per_dim[1];
+  soup.ignored.surfaces += per_dim[2];
+  soup.ignored.elements += dropped;
+  soup.ignored.chains += groups.size();
+  std::string w = soup.source + ": ignored " + count_of(groups.size(), "homology or cohomology chain", "homology and cohomology chains") +
+                  " (" + names + "; " + count_of(dropped, "element", "elements");
+  if (per_dim[3] > 0) w += ", " + count_of(per_dim[3], "volume", "volumes");
+  soup.warnings.push_back(w + "): Gmsh's (co)homology results, not model entities");
+}
 
 std::string count_of(std::size_t n, const char* singular, const char* plural) {
   return std::to_string(n) + " " + (n == 1 ? singular : plural);

@@ -10,6 +10,8 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "mesh/tet_soup.h"
@@ -31,6 +33,32 @@ struct ElementOrigins {
 // dropped, one line to soup.warnings. Also drops the entity tags no longer
 // carried from soup.groups (groups left empty are kept, with no entities).
 void drop_unattached(TetSoup& soup, const ElementOrigins& origins = {});
+
+// Gmsh's homology and cohomology solver (`Homology`, `Cohomology` in a .geo)
+// adds each basis chain to the mesh as a new discrete entity (points, lines,
+// triangles or tets on the mesh's own nodes) in a physical group of its own,
+// named "H_<dim>{domain}..." for homology and "H^<dim>{domain}..." for
+// cohomology. They are results computed on the mesh, not model entities: read
+// as curves they contradict the model's faces, read as tets they overlap the
+// mesh. True for such a name ("H_" or "H^" then a dimension digit).
+bool is_chain_name(std::string_view name);
+
+// The elements of one entity that the reader appended consecutively:
+// [begin, end) of soup.tets / triangles / edges / corners for dim 3 / 2 / 1 /
+// 0, with the physical group they were read in.
+struct ElementRun {
+  int dim = 0;
+  std::int32_t entity = 0;
+  std::int32_t group = 0;
+  std::size_t begin = 0, end = 0;
+};
+
+// Drops the elements of `chains` (runs of chain groups, in increasing order
+// of begin per dimension; their origins alongside), and the chain groups from
+// soup.groups; counts them in soup.ignored (their entities as points, curves
+// or surfaces, every element, the groups as chains) with one warning line
+// naming the groups. Call before drop_unattached.
+void drop_chains(TetSoup& soup, ElementOrigins& origins, const std::vector<ElementRun>& chains);
 
 // "1 point", "3 points": a count with its noun, for warnings.
 std::string count_of(std::size_t n, const char* singular, const char* plural);

@@ -1,5 +1,7 @@
 #include "io/vtu_reader.h"
 
+#include <algorithm>
+
 #include <array>
 #include <limits>
 #include <vector>
@@ -38,6 +40,9 @@ const Element& need_cells_array(const VtkXml& f, const Element& piece, std::stri
 
 Arrays read_arrays(const VtkXml& f) {
   Arrays r;
+  const auto& all = f.elements();
+  if (std::none_of(all.begin(), all.end(), [](const Element& e) { return e.name == "Piece"; }))
+    f.fail(0, "the file holds no tetrahedra (no <Piece> in the UnstructuredGrid)");
   const Element& piece = f.piece();
   r.piece_pos = piece.begin;
   r.npoints = f.count_attr(piece, "NumberOfPoints");

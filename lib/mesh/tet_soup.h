@@ -29,11 +29,13 @@ struct TaggedVertex {
 // the tets: points/curves/surfaces count model entities of dimension 0/1/2
 // left with no element on the tet mesh (construction points, free curves, the
 // parts of internal sheets outside the volume, entities the file declares but
-// gives no element); elements counts the lower-dimensional elements dropped
-// (a vertex no tet uses, or a repeated vertex as on a collapsed curve).
+// gives no element); elements counts the elements dropped (a vertex no tet
+// uses, a repeated vertex as on a collapsed curve, or an element of a chain);
+// chains counts the homology and cohomology chains Gmsh added to the mesh
+// (io/unattached.h; their entities are counted as points, curves, surfaces).
 struct IgnoredEntities {
-  std::size_t points = 0, curves = 0, surfaces = 0, elements = 0;
-  bool any() const { return points + curves + surfaces + elements > 0; }
+  std::size_t points = 0, curves = 0, surfaces = 0, elements = 0, chains = 0;
+  bool any() const { return points + curves + surfaces + elements + chains > 0; }
 };
 
 // A named (or numbered) group of the source: a Gmsh physical group. `entities`

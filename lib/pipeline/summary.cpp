@@ -147,6 +147,7 @@ Json ignored_summary(const IgnoredEntities& ignored) {
   j.set("curves", ignored.curves);
   j.set("surfaces", ignored.surfaces);
   j.set("elements", ignored.elements);
+  j.set("chains", ignored.chains);
   return j;
 }
 
