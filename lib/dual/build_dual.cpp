@@ -201,8 +201,9 @@ DualPoints make_points(const ClassifiedTetMesh& m, const CutTopology& ct, PolyMe
 // the ring whole but puts its centre between its two tets (rule I of
 // proofs/dual_cuts.md: the cells of a and b stay closed). Instantiated
 // without cuts apart (kCuts false): the same code as Algorithm 1 alone.
-// Flattened: the emit lambda, the ring and side lookups inline into the edge
-// loop (as calls they cost ~5% of the dual's instructions, callgrind).
+// Flattened: the chain and emit lambdas, the ring and side lookups inline
+// into the edge loop (as calls they cost ~5% of the dual's instructions,
+// callgrind).
 // The faces of edges [e0, e1) are appended to pm (its face arrays only).
 template <bool kCuts>
 [[gnu::flatten]] void make_edge_faces(const ClassifiedTetMesh& m, const CutTopology& ct, const VertexSides& sides,
@@ -227,60 +228,62 @@ template <bool kCuts>
       continue;
     }
     const VertexId a = m.edge(eid)[0], b = m.edge(eid)[1];
-    bool closed;
-    m.edge_ring(eid, ring, tris, closed);
-    const std::size_t n = ring.size();
-    cuts.clear();
-    if constexpr (!kCuts) {
-      for (std::size_t k = 0; k < n; ++k)
-        if (m.on_model_face(tris[k])) cuts.push_back(k);
-    } else {
-      inserted.assign(n + 1, 0);
-      for (std::size_t k = 0; k < n; ++k) {
-        if (ring_position(m, ct, tris[k], a, b)) cuts.push_back(k);
-        else inserted[k] = char(ct.is_cut(tris[k]));
-      }
-      if (closed) inserted[n] = inserted[0];
-    }
-    if (!closed) cuts.push_back(n);  // tris[n] is the closing boundary triangle
-    // The fan of tets ring[s .. t) (indices mod n on a closed ring), between the
-    // model-face (or cut) triangles tris[s] and tris[t] when `bounded`. tris has
-    // n + 1 entries and tris[n] == tris[0] on a closed ring, so t <= 2n - 1 maps
-    // to tris[t - n] past the end.
-    auto emit = [&](std::size_t s, std::size_t t, bool bounded) {
-      loop.clear();
-      const TriId start = tris[s], end = tris[t > n ? t - n : t];
-      if (bounded) loop.push_back(d.tri_point[start.idx]);
+    // Every chain of the edge's ring has its fans (several chains where the
+    // mesh touches itself along the edge: proofs/edge_chains.md).
+    m.for_each_edge_chain(eid, ring, tris, [&](bool closed) {
+      const std::size_t n = ring.size();
+      cuts.clear();
       if constexpr (!kCuts) {
-        for (std::size_t k = s; k < std::min(t, n); ++k) loop.push_back(PointId(ring[k].idx));
-        for (std::size_t k = n; k < t; ++k) loop.push_back(PointId(ring[k - n].idx));  // wrapped
+        for (std::size_t k = 0; k < n; ++k)
+          if (m.on_model_face(tris[k])) cuts.push_back(k);
       } else {
-        for (std::size_t k = s; k < t; ++k) {
-          const std::size_t kk = k >= n ? k - n : k;
-          if (k > s && inserted[kk]) loop.push_back(d.tri_point[tris[kk].idx]);
-          loop.push_back(PointId(ring[kk].idx));
+        inserted.assign(n + 1, 0);
+        for (std::size_t k = 0; k < n; ++k) {
+          if (ring_position(m, ct, tris[k], a, b)) cuts.push_back(k);
+          else inserted[k] = char(ct.is_cut(tris[k]));
         }
-        if (!bounded && inserted[0]) loop.push_back(d.tri_point[tris[0].idx]);  // between ring[n-1] and ring[0]
+        if (closed) inserted[n] = inserted[0];
       }
-      // One cut on a closed ring (start == end, a fracture tip edge): the fan
-      // goes all the way round and closes on the start triangle's centre.
-      if (bounded && end != start) {
-        loop.push_back(d.tri_point[end.idx]);
-        if (d.edge_point[e].valid()) loop.push_back(d.edge_point[e]);
+      if (!closed) cuts.push_back(n);  // tris[n] is the closing boundary triangle
+      // The fan of tets ring[s .. t) (indices mod n on a closed ring), between the
+      // model-face (or cut) triangles tris[s] and tris[t] when `bounded`. tris has
+      // n + 1 entries and tris[n] == tris[0] on a closed ring, so t <= 2n - 1 maps
+      // to tris[t - n] past the end.
+      auto emit = [&](std::size_t s, std::size_t t, bool bounded) {
+        loop.clear();
+        const TriId start = tris[s], end = tris[t > n ? t - n : t];
+        if (bounded) loop.push_back(d.tri_point[start.idx]);
+        if constexpr (!kCuts) {
+          for (std::size_t k = s; k < std::min(t, n); ++k) loop.push_back(PointId(ring[k].idx));
+          for (std::size_t k = n; k < t; ++k) loop.push_back(PointId(ring[k - n].idx));  // wrapped
+        } else {
+          for (std::size_t k = s; k < t; ++k) {
+            const std::size_t kk = k >= n ? k - n : k;
+            if (k > s && inserted[kk]) loop.push_back(d.tri_point[tris[kk].idx]);
+            loop.push_back(PointId(ring[kk].idx));
+          }
+          if (!bounded && inserted[0]) loop.push_back(d.tri_point[tris[0].idx]);  // between ring[n-1] and ring[0]
+        }
+        // One cut on a closed ring (start == end, a fracture tip edge): the fan
+        // goes all the way round and closes on the start triangle's centre.
+        if (bounded && end != start) {
+          loop.push_back(d.tri_point[end.idx]);
+          if (d.edge_point[e].valid()) loop.push_back(d.edge_point[e]);
+        }
+        const TetId t0 = ring[s % n];
+        if (bounded) model_faces.push_back(std::uint32_t(pm.num_faces()));
+        pm.add_face(loop, sides.cell(t0, a), sides.cell(t0, b),
+                    FaceKind::Interior, 0);
+      };
+      if (cuts.empty()) {
+        emit(0, n, false);  // interior edge: closed ring, no model face
+      } else if (!closed) {
+        for (std::size_t j = 0; j + 1 < cuts.size(); ++j) emit(cuts[j], cuts[j + 1], true);
+      } else {
+        for (std::size_t j = 0; j < cuts.size(); ++j)
+          emit(cuts[j], j + 1 < cuts.size() ? cuts[j + 1] : cuts[0] + n, true);
       }
-      const TetId t0 = ring[s % n];
-      if (bounded) model_faces.push_back(std::uint32_t(pm.num_faces()));
-      pm.add_face(loop, sides.cell(t0, a), sides.cell(t0, b),
-                  FaceKind::Interior, 0);
-    };
-    if (cuts.empty()) {
-      emit(0, n, false);  // interior edge: closed ring, no model face
-    } else if (!closed) {
-      for (std::size_t j = 0; j + 1 < cuts.size(); ++j) emit(cuts[j], cuts[j + 1], true);
-    } else {
-      for (std::size_t j = 0; j < cuts.size(); ++j)
-        emit(cuts[j], j + 1 < cuts.size() ? cuts[j + 1] : cuts[0] + n, true);
-    }
+    });
   }
 }
 

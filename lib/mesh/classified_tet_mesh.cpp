@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "core/error.h"
+#include "core/radix_sort.h"
 
 namespace polydual {
 
@@ -105,14 +106,13 @@ std::vector<TetId> ClassifiedTetMesh::edge_ring(EdgeId e, bool* closed) const {
   return tets;
 }
 
-void ClassifiedTetMesh::edge_ring(EdgeId e, std::vector<TetId>& tets, std::vector<TriId>& tris,
-                                  bool& closed) const {
-  // Walk forwards from the stored tet, across the face after each tet
+void ClassifiedTetMesh::edge_ring_from(EdgeId e, TetId start, std::vector<TetId>& tets, std::vector<TriId>& tris,
+                                       bool& closed) const {
+  // Walk forwards from the start tet, across the face after each tet
   // (a, b, id); a closed ring comes back to the start. An open ring hits the
   // boundary: then walk backwards from the start (across (a, b, ic)) and put
   // that part in front, so the ring starts at the boundary.
   const auto [a, b] = edge(e);
-  const TetId start = edge_tet(e);
   tets.clear();
   tris.clear();
   int ic, id;
@@ -145,6 +145,22 @@ void ClassifiedTetMesh::edge_ring(EdgeId e, std::vector<TetId>& tets, std::vecto
   std::rotate(tris.begin(), tris.begin() + std::ptrdiff_t(n_tris), tris.end());
 }
 
+std::vector<TetId> ClassifiedTetMesh::other_chain_starts(EdgeId e, std::span<const TetId> first) const {
+  // The tets around e are those of a's star that have b. Each one not yet in
+  // a chain starts the walk of its own chain (open: no chain of a mesh whose
+  // tets do not overlap is closed but the only one).
+  const auto [a, b] = edge(e);
+  std::vector<TetId> seen(first.begin(), first.end()), starts, tets;
+  std::vector<TriId> tris;
+  for (TetId t : vertex_tets(a)) {
+    if (local_index(t, b) < 0 || std::find(seen.begin(), seen.end(), t) != seen.end()) continue;
+    bool closed;
+    edge_ring_from(e, t, tets, tris, closed);
+    starts.push_back(t);
+    seen.insert(seen.end(), tets.begin(), tets.end());
+  }
+  return starts;
+}
 
 double ClassifiedTetMesh::tet_volume(TetId t) const {
   const auto& v = tets_[t.idx];
@@ -209,6 +225,7 @@ constexpr std::size_t kEdgeGuessSlack = 16;
   check_opposite_sides(m, b);
   number_triangles(m, num_tris);
   number_edges(m, b, num_tris);
+  find_multi_chain_edges(m);
   m.vertex_class_.assign(nv, ModelRef{});
   m.edge_class_.assign(m.edge_code_.size(), ModelRef{});
   m.tri_face_.assign(m.tri_code_.size(), ClassifiedTetMesh::kNoFace);
@@ -458,6 +475,31 @@ void TetMeshBuilder::number_edges(ClassifiedTetMesh& m, const LowVertexBuckets& 
       for (std::size_t i = 0; i < n_recs; ++i)
         m.tet_edge_[6 * (recs[i].code >> 3) + (recs[i].code & 7)] = EdgeId(slot[recs[i].w]);
     }
+  }
+}
+
+// An open chain of an edge begins and ends on a boundary triangle (a tet face
+// without a neighbour), and a closed chain has none; so an edge has several
+// chains iff more than two boundary triangles meet at it (proofs/
+// edge_chains.md E1). One sequential pass over the adjacency, then a radix
+// sort of the boundary triangles' edges (a few per cent of the faces).
+void TetMeshBuilder::find_multi_chain_edges(ClassifiedTetMesh& m) {
+  const std::size_t nt = m.tets_.size();
+  std::vector<std::uint32_t> edges;
+  for (std::size_t c = 0; c < 4 * nt; ++c) {
+    if (m.tet_adj_[c] != ClassifiedTetMesh::kNoNeighbour) [[likely]]
+      continue;
+    const int i = int(c & 3);  // local face i: the edges without local vertex i
+    for (int k = 0; k < 6; ++k)
+      if (kTetEdge[k][0] != i && kTetEdge[k][1] != i) edges.push_back(m.tet_edge_[6 * (c >> 2) + std::size_t(k)].idx);
+  }
+  radix_sort_by_key(edges, [](std::uint32_t x) { return x; }, std::bit_width(m.edge_code_.size()));
+  m.multi_chain_edges_.clear();
+  for (std::size_t k = 0; k < edges.size();) {
+    std::size_t j = k;
+    while (j < edges.size() && edges[j] == edges[k]) ++j;
+    if (j - k > 2) m.multi_chain_edges_.push_back(EdgeId(edges[k]));
+    k = j;
   }
 }
 
