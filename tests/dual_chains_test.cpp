@@ -131,6 +131,7 @@ TEST(DualChains, CgalLabelledImageConvertsWithEveryCellClosed) {
     const ConvertResult r = convert(soup, raw);
     EXPECT_GE(r.primal.multi_chain_edges().size(), 3u) << "the mesh must still touch itself along edges";
     EXPECT_EQ(r.check.validation.closed_cells, r.check.validation.cells) << "raw, feature angle " << angle;
+    EXPECT_EQ(r.check.validation.manifold_cells, r.check.validation.cells) << "raw, feature angle " << angle;
     EXPECT_EQ(r.check.validation.face_errors, 0u);
     EXPECT_GT(r.check.invalid_cells, 0u) << "the split below must have work";
     raw_cells = r.mesh.num_cells();
@@ -140,6 +141,7 @@ TEST(DualChains, CgalLabelledImageConvertsWithEveryCellClosed) {
   EXPECT_GT(r.mesh.num_cells(), raw_cells) << "cells were split";
   EXPECT_EQ(r.report.invalid_after, 0u);
   EXPECT_EQ(r.check.validation.closed_cells, r.check.validation.cells) << "after the split";
+  EXPECT_EQ(r.check.validation.manifold_cells, r.check.validation.cells) << "after the split";
   EXPECT_EQ(r.check.validation.face_errors, 0u);
   EXPECT_TRUE(r.check.validation.missing_model_entities.empty());
 }

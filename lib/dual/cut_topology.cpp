@@ -75,7 +75,7 @@ struct EdgeStop { bool stop, caps_a, caps_b; };
 
 EdgeStop edge_stop(const ClassifiedTetMesh& m, const CutTopology& ct, EdgeId e, std::vector<TetId>& ring,
                    std::vector<TriId>& tris) {
-  const auto [a, b] = m.edge(e);
+  const VertexId a = m.edge(e)[0], b = m.edge(e)[1];  // not a structured binding: the lambda captures them
   std::size_t p = 0, ca = 0, cb = 0;
   m.for_each_edge_chain(e, ring, tris, [&](bool closed) {
     const std::size_t nk = closed ? ring.size() : ring.size() + 1;
