@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "classify/classify.h"
+#include "core/error.h"
 #include "dual/build_dual.h"
 #include "io/medit_io.h"
 #include "mesh/validate.h"
@@ -111,6 +112,36 @@ TEST(DualChains, ThreeTetsAroundACgalJunctionEdge) {
   DualParams raw;
   raw.cleanup = false;
   expect_closed(build_dual(m, raw), m, "cgal junction, no cleanup");
+}
+
+// A closed ring of four tets round the axis (0,0,-1)-(0,0,1) and a fifth tet
+// on the axis inside the ring's first wedge: classify() accepts it (each
+// triangle has at most two tets, on its two sides), but the tets overlap round
+// the axis. The dual refuses it, naming the axis (input vertices 1 and 2), as
+// it cannot close the cells there (proofs/edge_chains.md E1 (ii)).
+TEST(DualChains, OverlapRoundAnEdgeIsRefused) {
+  TetSoup s;
+  s.source = "ring and one more";
+  s.points = {{0, 0, -1}, {0, 0, 1}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}, {0.5, 0.1, 0}, {0.1, 0.5, 0}};
+  s.tets = {{0, 1, 2, 3}, {0, 1, 3, 4}, {0, 1, 4, 5}, {0, 1, 5, 2}, {0, 1, 6, 7}};
+  s.tet_region = {1, 1, 1, 1, 1};
+  const ClassifiedTetMesh m = classify(s);
+  // Two boundary triangles at the axis (the fifth tet's): not listed as an
+  // edge of several chains, which only a mesh without overlaps guarantees.
+  EXPECT_TRUE(m.multi_chain_edges().empty());
+  try {
+    build_dual(m);
+    ADD_FAILURE() << "an overlap round an edge must be refused";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("ring and one more"), std::string::npos) << what;
+    EXPECT_NE(what.find("edge (1, 2)"), std::string::npos) << what;
+    EXPECT_NE(what.find("4 of them close a ring round it and 1 more lies around it too"), std::string::npos) << what;
+  }
+  // Without the fifth tet: the ring alone is a valid mesh.
+  s.tets.pop_back();
+  s.tet_region.pop_back();
+  EXPECT_NO_THROW(build_dual(classify(s)));
 }
 
 // The blocks image at a coarse size (experiments/meshgen/labelled_image_medit

@@ -208,7 +208,7 @@ DualPoints make_points(const ClassifiedTetMesh& m, const CutTopology& ct, PolyMe
 template <bool kCuts>
 [[gnu::flatten]] void make_edge_faces(const ClassifiedTetMesh& m, const CutTopology& ct, const VertexSides& sides,
                      const DualPoints& d, PolyMesh& pm, std::vector<std::uint32_t>& model_faces,
-                     std::span<const char> active, std::size_t e0, std::size_t e1) {
+                     std::span<const char> active, std::size_t e0, std::size_t e1, std::size_t& walked) {
   std::vector<TetId> ring;
   std::vector<TriId> tris;
   std::vector<std::size_t> cuts;
@@ -222,7 +222,9 @@ template <bool kCuts>
       // so the ring is closed; with no cut triangle in it either, it is uncut:
       // one face of the tet centres (what the general path below gives).
       const auto [a, b] = m.edge(eid);
+      const std::size_t before = pm.face_points.size();
       m.for_each_closed_ring_tet(eid, [&](TetId t) { pm.face_points.push_back(PointId(t.idx)); });
+      walked += pm.face_points.size() - before;
       const TetId t0 = m.edge_tet(eid);
       pm.close_face(sides.cell(t0, a), sides.cell(t0, b), FaceKind::Interior, 0);
       continue;
@@ -232,6 +234,7 @@ template <bool kCuts>
     // mesh touches itself along the edge: proofs/edge_chains.md).
     m.for_each_edge_chain(eid, ring, tris, [&](bool closed) {
       const std::size_t n = ring.size();
+      walked += n;
       cuts.clear();
       if constexpr (!kCuts) {
         for (std::size_t k = 0; k < n; ++k)
@@ -292,6 +295,7 @@ template <bool kCuts>
 struct EdgeFaceBlock {
   PolyMesh faces;
   std::vector<std::uint32_t> model_faces;
+  std::size_t walked = 0;  // tets visited by the ring walks of the block's edges
 };
 
 // Room for the faces of n edges in a block (make_all_edge_faces).
@@ -324,15 +328,16 @@ void append_faces(PolyMesh& pm, std::vector<std::uint32_t>& model_faces, const E
 // process's memory peak ~2 MB above the live data (twomat 100k, the split's
 // final build). A block's arrays are reserved for one face of 6 points per
 // edge (every tet is in the rings of its 6 edges, and a mesh has more edges
-// than tets); a block that needs more grows.
+// than tets); a block that needs more grows. Returns the number of tets the
+// ring walks visited (6 per tet when every chain of every edge was walked).
 template <bool kCuts>
-void make_all_edge_faces(const ClassifiedTetMesh& m, const CutTopology& ct, const VertexSides& sides,
-                         const DualPoints& d, PolyMesh& pm, std::vector<std::uint32_t>& model_faces,
-                         std::span<const char> active) {
+std::size_t make_all_edge_faces(const ClassifiedTetMesh& m, const CutTopology& ct, const VertexSides& sides,
+                                const DualPoints& d, PolyMesh& pm, std::vector<std::uint32_t>& model_faces,
+                                std::span<const char> active) {
   constexpr std::size_t kBlock = 2048;
   const std::size_t ne = m.num_edges();
   const std::size_t tokens = 2 * std::size_t(std::max(1, tbb::this_task_arena::max_concurrency()));
-  std::size_t next = 0;
+  std::size_t next = 0, walked = 0;
   tbb::parallel_pipeline(
       tokens,
       tbb::make_filter<void, std::size_t>(tbb::filter_mode::serial_in_order,
@@ -348,12 +353,53 @@ void make_all_edge_faces(const ClassifiedTetMesh& m, const CutTopology& ct, cons
                 auto b = std::make_shared<EdgeFaceBlock>();
                 reserve_block(b->faces, std::min(ne, e0 + kBlock) - e0);
                 make_edge_faces<kCuts>(m, ct, sides, d, b->faces, b->model_faces, active, e0,
-                                       std::min(ne, e0 + kBlock));
+                                       std::min(ne, e0 + kBlock), b->walked);
                 return b;
               }) &
           tbb::make_filter<std::shared_ptr<EdgeFaceBlock>, void>(
-              tbb::filter_mode::serial_in_order,
-              [&](const std::shared_ptr<EdgeFaceBlock>& b) { append_faces(pm, model_faces, *b); }));
+              tbb::filter_mode::serial_in_order, [&](const std::shared_ptr<EdgeFaceBlock>& b) {
+                append_faces(pm, model_faces, *b);
+                walked += b->walked;
+              }));
+  return walked;
+}
+
+// Every tet lies around its 6 edges, so the ring walks of all edges visit
+// 6 tets per tet exactly when every chain of every edge was walked. Fewer
+// happens only when the tets around some edge hold a closed chain and another
+// one, which winds round the edge more than once: the tets overlap there
+// (proofs/edge_chains.md E1). Such a mesh is refused (InputError naming the
+// edge, input numbering) rather than given a dual with open cells. The edge
+// is found only on this error path: the tets around each edge counted
+// against its walks.
+void refuse_overlapping_rings(const ClassifiedTetMesh& m, std::size_t walked) {
+  if (walked == 6 * m.num_tets()) [[likely]]
+    return;
+  std::vector<std::uint32_t> around(m.num_edges(), 0);
+  for (std::size_t t = 0; t < m.num_tets(); ++t)
+    for (int k = 0; k < 6; ++k) ++around[m.tet_edge(TetId(t), k).idx];
+  std::vector<TetId> ring;
+  std::vector<TriId> tris;
+  for (std::size_t e = 0; e < m.num_edges(); ++e) {
+    std::size_t n = 0;
+    m.for_each_edge_chain(EdgeId(e), ring, tris, [&](bool) { n += ring.size(); });
+    if (n == around[e]) continue;
+    // Every chain of the edge, the closed ones counted apart (for the message).
+    bool closed;
+    m.edge_ring(EdgeId(e), ring, tris, closed);
+    std::size_t in_rings = closed ? ring.size() : 0;
+    for (TetId start : m.other_chain_starts(EdgeId(e), ring)) {
+      std::vector<TetId> chain;
+      m.edge_ring_from(EdgeId(e), start, chain, tris, closed);
+      in_rings += closed ? chain.size() : 0;
+    }
+    const auto [a, b] = m.edge(EdgeId(e));
+    throw InputError(m.source(),
+                     "edge (" + std::to_string(m.input_vertex(a) + 1) + ", " + std::to_string(m.input_vertex(b) + 1) + ")",
+                     "the tets around this edge overlap: " + std::to_string(in_rings) +
+                         " of them close a ring round it and " + std::to_string(around[e] - in_rings) +
+                         (around[e] - in_rings == 1 ? " more lies" : " more lie") + " around it too");
+  }
 }
 
 // Vertex v -> the triangles of M ∪ cut(v) through v (CSR, triangles
@@ -734,8 +780,9 @@ DualDraft build_dual_draft(const ClassifiedTetMesh& m, const DualParams& params,
   t0 = Clock::now();
   std::vector<std::uint32_t> model_faces;
   const std::span<const char> active = scope ? scope->active : std::span<const char>();
-  if (ct.active) make_all_edge_faces<true>(m, ct, sides, d, pm, model_faces, active);
-  else make_all_edge_faces<false>(m, ct, sides, d, pm, model_faces, active);
+  const std::size_t walked = ct.active ? make_all_edge_faces<true>(m, ct, sides, d, pm, model_faces, active)
+                                       : make_all_edge_faces<false>(m, ct, sides, d, pm, model_faces, active);
+  if (active.empty()) refuse_overlapping_rings(m, walked);  // a scoped dual walks some edges only
   const std::size_t first_cap = pm.num_faces();
   make_caps(m, ct, sides, d, pm, st, active);  // every cap has model points
   for (std::size_t f = first_cap; f < pm.num_faces(); ++f) model_faces.push_back(std::uint32_t(f));
