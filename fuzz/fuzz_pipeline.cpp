@@ -39,6 +39,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (r.check.verdicts.size() != r.mesh.num_cells()) __builtin_trap();
     if (r.report.invalid_after > r.report.invalid_before) __builtin_trap();  // the optimiser never makes a cell invalid
     if (r.check.validation.face_errors != 0) __builtin_trap();
+    // Every cell closed, also where the mesh touches itself along an edge
+    // (proofs/edge_chains.md; seeds two_tets_edge, cgal_junction_edge).
+    if (r.check.validation.closed_cells != r.check.validation.cells) __builtin_trap();
   } catch (const polydual::InputError&) {
   } catch (const polydual::UsageError&) {
   }

@@ -55,6 +55,7 @@ std::size_t count_sides(const ClassifiedTetMesh& m) {
 struct DualCounts {
   std::size_t interface_faces = 0, fracture_faces = 0, merged_points = 0;
   std::size_t fracture_tags = 0;  // distinct sheet markers (source tags) of fracture model faces
+  std::size_t multi_chain_edges = 0;  // edges whose tets fall into several chains
 };
 
 DualCounts check_invariants(const TetSoup& soup, bool planar, const std::string& what) {
@@ -64,6 +65,7 @@ DualCounts check_invariants(const TetSoup& soup, bool planar, const std::string&
   PolyMesh pm = build_dual(m, {}, &st);
   DualCounts counts;
   counts.merged_points = st.merged_points;
+  counts.multi_chain_edges = m.multi_chain_edges().size();
   for (FaceKind k : pm.face_kind) {
     counts.interface_faces += k == FaceKind::Interface;
     counts.fracture_faces += k == FaceKind::Fracture;
@@ -191,16 +193,18 @@ TEST(Dual, KuhnLatticeTwoMaterials) {
 }
 
 TEST(Dual, RandomMeshInvariants) {
-  // 2340 random classified meshes: one region (planar faces: exact volume
+  // 2600 random classified meshes: one region (planar faces: exact volume
   // identity), two regions (jagged interface), with fracture, with two sheets
   // crossing (one ending inside, one reaching the outer boundary), with
   // construction points, free curves and sheet parts outside the volume, lattice points,
-  // three crossing sheets, fins on the wall, a notched (concave) box.
+  // three crossing sheets, fins on the wall, a notched (concave) box, three
+  // materials touching along edges with the outside on both sides.
   // Each family must exercise what it is there for: interface faces in the
   // two-region meshes, fracture faces (capped on both sides) in the fractured
   // ones, exact merges of cospherical centres in the lattice ones.
-  std::size_t meshes[9] = {}, interface_meshes = 0, fracture_meshes = 0, merging_meshes = 0,
-              crossing_meshes = 0, unattached_meshes = 0, network_meshes = 0, fin_meshes = 0, notch_meshes = 0;
+  std::size_t meshes[10] = {}, interface_meshes = 0, fracture_meshes = 0, merging_meshes = 0,
+              crossing_meshes = 0, unattached_meshes = 0, network_meshes = 0, fin_meshes = 0, notch_meshes = 0,
+              touching_meshes = 0;
   for (std::uint64_t seed = 1; seed <= 260; ++seed) {
     RandomMeshParams p;
     p.seed = seed;
@@ -270,11 +274,17 @@ TEST(Dual, RandomMeshInvariants) {
       }
       notch_meshes += volume < 1 - 0.125 * 0.6;
       check_invariants(notched, false, "notch seed " + std::to_string(seed));
+      // Edges with several chains (proofs/edge_chains.md): every chain's fans
+      // have their faces, so the cells at both ends stay closed.
+      q = p;
+      q.touching = true;
+      touching_meshes += check_invariants(random_classified_mesh(q), false, "touching seed " + std::to_string(seed))
+                             .multi_chain_edges > 0;
     }
-    meshes[6] += 1, meshes[7] += 1, meshes[8] += 1;
+    meshes[6] += 1, meshes[7] += 1, meshes[8] += 1, meshes[9] += 1;
     if (HasFailure()) break;
   }
-  for (std::size_t n : meshes) EXPECT_EQ(n, 260u);  // 2340 meshes in all
+  for (std::size_t n : meshes) EXPECT_EQ(n, 260u);  // 2600 meshes in all
   // Every two-region and fractured mesh has its interface/fracture faces;
   // the lattice points make cospherical neighbours in most lattice meshes
   // (177 of the 260 seeds).
@@ -286,8 +296,9 @@ TEST(Dual, RandomMeshInvariants) {
   EXPECT_GE(network_meshes, 200u);
   EXPECT_GE(fin_meshes, 200u);
   EXPECT_GE(notch_meshes, 200u);
+  EXPECT_GE(touching_meshes, 240u);
   std::cout << "three crossing sheets " << network_meshes << ", two fins " << fin_meshes
-            << ", notched " << notch_meshes << " (of 260 each)\n";
+            << ", notched " << notch_meshes << ", touching along edges " << touching_meshes << " (of 260 each)\n";
   std::cout << "meshes with interface faces " << interface_meshes << ", fracture faces " << fracture_meshes
             << ", exact merges " << merging_meshes << ", two crossing sheets " << crossing_meshes
             << ", unattached entities dropped " << unattached_meshes << " (of 260 each)\n";

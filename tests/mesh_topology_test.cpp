@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <set>
 
 #include "classify/classify.h"
@@ -172,5 +173,95 @@ TEST(MeshTopology, EdgeNumberingAroundHighValenceVertices) {
         EXPECT_EQ(std::min(p, q), a);
         EXPECT_EQ(std::max(p, q), b);
       }
+  }
+}
+
+namespace {
+
+// Checks the chains of every edge of m (proofs/edge_chains.md E1): each tet
+// around the edge in exactly one chain; consecutive tets of a chain sharing
+// the triangle between them; an open chain running from a boundary triangle
+// to a boundary triangle; several chains exactly for the listed edges, and
+// then one per two boundary triangles at the edge. Returns the number of
+// edges with several chains.
+std::size_t check_edge_chains(const ClassifiedTetMesh& m) {
+  std::vector<TetId> ring;
+  std::vector<TriId> tris;
+  std::size_t several = 0;
+  for (std::size_t e = 0; e < m.num_edges(); ++e) {
+    const EdgeId eid(e);
+    const auto [a, b] = m.edge(eid);
+    std::multiset<std::uint32_t> around, chained;
+    std::size_t boundary = 0;
+    for (TetId t : m.vertex_tets(a)) {
+      if (m.local_index(t, b) < 0) continue;
+      around.insert(t.idx);
+      for (int i = 0; i < 4; ++i)
+        boundary += m.tet(t)[i] != a && m.tet(t)[i] != b && !m.tet_neighbor(t, i).valid();
+    }
+    std::size_t chains = 0;
+    m.for_each_edge_chain(eid, ring, tris, [&](bool closed) {
+      ++chains;
+      EXPECT_EQ(tris.size(), ring.size() + 1);
+      for (TetId t : ring) chained.insert(t.idx);
+      for (std::size_t k = 0; k + 1 < ring.size(); ++k) {
+        const TriId f = tris[k + 1];
+        EXPECT_TRUE((m.triangle_tet(f, 0) == ring[k] && m.triangle_tet(f, 1) == ring[k + 1]) ||
+                    (m.triangle_tet(f, 1) == ring[k] && m.triangle_tet(f, 0) == ring[k + 1]));
+      }
+      if (closed) EXPECT_EQ(tris.front(), tris.back());
+      else EXPECT_TRUE(!m.triangle_tet(tris.front(), 1).valid() && !m.triangle_tet(tris.back(), 1).valid());
+    });
+    EXPECT_EQ(chained, around) << "edge " << e;
+    EXPECT_EQ(m.has_several_chains(eid), chains > 1) << "edge " << e;
+    if (boundary > 0) EXPECT_EQ(2 * chains, boundary) << "edge " << e;
+    several += chains > 1;
+  }
+  EXPECT_EQ(several, m.multi_chain_edges().size());
+  return several;
+}
+
+}  // namespace
+
+// The chains on the touching family (random_mesh.h: two blocks of different
+// materials touching along edges between two wedges of outside, on a slab of
+// a third) and on fans of n tets around one axis with every other tet left
+// out (n / 2 chains of one tet around the axis).
+TEST(MeshTopology, EdgeChainsPartitionTheTetsAroundEachEdge) {
+  std::size_t touching_meshes = 0;
+  for (std::uint64_t seed = 1; seed <= 60; ++seed) {
+    RandomMeshParams p;
+    p.seed = seed;
+    p.num_points = 40 + int(seed % 50);
+    p.touching = true;
+    SCOPED_TRACE("touching seed " + std::to_string(seed));
+    touching_meshes += check_edge_chains(classify(random_classified_mesh(p))) > 0;
+    if (HasFailure()) break;
+  }
+  EXPECT_GE(touching_meshes, 55u) << "the family must touch itself along edges in most meshes";
+  std::printf("touching meshes with edges of several chains: %zu of 60\n", touching_meshes);
+  for (int n : {4, 6, 12}) {
+    SCOPED_TRACE("fan of " + std::to_string(n) + " with gaps");
+    TetSoup s;
+    s.source = "fan with gaps";
+    s.points = {{0, 0, -1}, {0, 0, 1}};
+    for (int i = 0; i < n; ++i)
+      s.points.push_back({std::cos(2 * M_PI * i / n), std::sin(2 * M_PI * i / n), 0});
+    for (int i = 0; i < n; i += 2) {
+      std::array<std::uint32_t, 4> t{0, 1, std::uint32_t(2 + i), std::uint32_t(2 + (i + 1) % n)};
+      if (orient3d(s.points[t[0]], s.points[t[1]], s.points[t[2]], s.points[t[3]]) != Sign::Positive)
+        std::swap(t[2], t[3]);
+      s.tets.push_back(t);
+      s.tet_region.push_back(1 + i % 3);
+    }
+    const ClassifiedTetMesh m = classify(s);
+    EXPECT_EQ(check_edge_chains(m), 1u);
+    const EdgeId axis = m.multi_chain_edges()[0];
+    EXPECT_EQ(m.input_vertex(m.edge(axis)[0]) + m.input_vertex(m.edge(axis)[1]), 1u) << "the axis (0, 1)";
+    std::vector<TetId> ring;
+    std::vector<TriId> tris;
+    int chains = 0;
+    m.for_each_edge_chain(axis, ring, tris, [&](bool) { ++chains; });
+    EXPECT_EQ(chains, n / 2);
   }
 }

@@ -92,12 +92,14 @@ TEST(SplitPipeline, RequireValidNamesEachCell) {
 
 // The family of random mesh i: plain, two materials, one fracture, crossing
 // sheets, a network of three, fins on the walls, a notch (concave edges and
-// corner), lattice points (cospherical and coplanar points), and mixes.
+// corner), lattice points (cospherical and coplanar points), mixes, and three
+// materials touching along edges (edges of several chains).
+constexpr int kFamilies = 11;
 RandomMeshParams random_family(int i) {
   RandomMeshParams p;
   p.seed = std::uint64_t(i);
   p.num_points = 20 + (i % 9) * 5;
-  switch (i % 10) {
+  switch (i % kFamilies) {
     case 0: break;
     case 1: p.regions = 2; break;
     case 2: p.fracture = true; break;
@@ -107,7 +109,8 @@ RandomMeshParams random_family(int i) {
     case 6: p.notch = true; break;
     case 7: p.notch = p.fracture = true; p.regions = 2; break;
     case 8: p.lattice_points = p.fracture = true; break;
-    default: p.network = p.fins = p.notch = true; break;
+    case 9: p.network = p.fins = p.notch = true; break;
+    default: p.touching = true; break;
   }
   return p;
 }
@@ -132,9 +135,9 @@ TEST(SplitPipeline, RandomMeshesEndWithEveryCellValid) {
     const RandomMeshParams mp = random_family(i);
     const TetSoup soup = random_classified_mesh(mp);
     const ConvertResult r = convert(soup, p);
-    ASSERT_EQ(r.check.invalid_cells, 0u) << "mesh " << i << " family " << i % 10;
+    ASSERT_EQ(r.check.invalid_cells, 0u) << "mesh " << i << " family " << i % kFamilies;
     EXPECT_EQ(r.report.invalid_after, 0u);
-    EXPECT_TRUE(r.check.validation.ok()) << "mesh " << i << " family " << i % 10;
+    EXPECT_TRUE(r.check.validation.ok()) << "mesh " << i << " family " << i % kFamilies;
     EXPECT_EQ(r.check.validation.closed_cells, r.check.validation.cells) << "mesh " << i;
     EXPECT_EQ(r.check.validation.slit_cells, 0u) << "mesh " << i;
     EXPECT_TRUE(r.check.validation.missing_model_entities.empty()) << "mesh " << i;
@@ -157,10 +160,10 @@ TEST(SplitPipeline, RandomMeshesEndWithEveryCellValid) {
 // With the default optimiser too: every cell valid, and the optimiser never
 // makes the split mesh worse than the split alone.
 TEST(SplitPipeline, RandomMeshesOptimisedEndValid) {
-  for (int i = 0; i < 10; ++i) {
+  for (int i = 0; i < kFamilies; ++i) {
     const TetSoup soup = random_classified_mesh(random_family(i));
     const ConvertResult r = convert(soup, PipelineParams{});
-    EXPECT_EQ(r.check.invalid_cells, 0u) << "mesh " << i << " family " << i % 10;
+    EXPECT_EQ(r.check.invalid_cells, 0u) << "mesh " << i << " family " << i % kFamilies;
     EXPECT_TRUE(r.check.validation.ok()) << "mesh " << i;
   }
 }

@@ -201,13 +201,14 @@ DualPoints make_points(const ClassifiedTetMesh& m, const CutTopology& ct, PolyMe
 // the ring whole but puts its centre between its two tets (rule I of
 // proofs/dual_cuts.md: the cells of a and b stay closed). Instantiated
 // without cuts apart (kCuts false): the same code as Algorithm 1 alone.
-// Flattened: the emit lambda, the ring and side lookups inline into the edge
-// loop (as calls they cost ~5% of the dual's instructions, callgrind).
+// Flattened: the chain and emit lambdas, the ring and side lookups inline
+// into the edge loop (as calls they cost ~5% of the dual's instructions,
+// callgrind).
 // The faces of edges [e0, e1) are appended to pm (its face arrays only).
 template <bool kCuts>
 [[gnu::flatten]] void make_edge_faces(const ClassifiedTetMesh& m, const CutTopology& ct, const VertexSides& sides,
                      const DualPoints& d, PolyMesh& pm, std::vector<std::uint32_t>& model_faces,
-                     std::span<const char> active, std::size_t e0, std::size_t e1) {
+                     std::span<const char> active, std::size_t e0, std::size_t e1, std::size_t& walked) {
   std::vector<TetId> ring;
   std::vector<TriId> tris;
   std::vector<std::size_t> cuts;
@@ -221,66 +222,71 @@ template <bool kCuts>
       // so the ring is closed; with no cut triangle in it either, it is uncut:
       // one face of the tet centres (what the general path below gives).
       const auto [a, b] = m.edge(eid);
+      const std::size_t before = pm.face_points.size();
       m.for_each_closed_ring_tet(eid, [&](TetId t) { pm.face_points.push_back(PointId(t.idx)); });
+      walked += pm.face_points.size() - before;
       const TetId t0 = m.edge_tet(eid);
       pm.close_face(sides.cell(t0, a), sides.cell(t0, b), FaceKind::Interior, 0);
       continue;
     }
     const VertexId a = m.edge(eid)[0], b = m.edge(eid)[1];
-    bool closed;
-    m.edge_ring(eid, ring, tris, closed);
-    const std::size_t n = ring.size();
-    cuts.clear();
-    if constexpr (!kCuts) {
-      for (std::size_t k = 0; k < n; ++k)
-        if (m.on_model_face(tris[k])) cuts.push_back(k);
-    } else {
-      inserted.assign(n + 1, 0);
-      for (std::size_t k = 0; k < n; ++k) {
-        if (ring_position(m, ct, tris[k], a, b)) cuts.push_back(k);
-        else inserted[k] = char(ct.is_cut(tris[k]));
-      }
-      if (closed) inserted[n] = inserted[0];
-    }
-    if (!closed) cuts.push_back(n);  // tris[n] is the closing boundary triangle
-    // The fan of tets ring[s .. t) (indices mod n on a closed ring), between the
-    // model-face (or cut) triangles tris[s] and tris[t] when `bounded`. tris has
-    // n + 1 entries and tris[n] == tris[0] on a closed ring, so t <= 2n - 1 maps
-    // to tris[t - n] past the end.
-    auto emit = [&](std::size_t s, std::size_t t, bool bounded) {
-      loop.clear();
-      const TriId start = tris[s], end = tris[t > n ? t - n : t];
-      if (bounded) loop.push_back(d.tri_point[start.idx]);
+    // Every chain of the edge's ring has its fans (several chains where the
+    // mesh touches itself along the edge: proofs/edge_chains.md).
+    m.for_each_edge_chain(eid, ring, tris, [&](bool closed) {
+      const std::size_t n = ring.size();
+      walked += n;
+      cuts.clear();
       if constexpr (!kCuts) {
-        for (std::size_t k = s; k < std::min(t, n); ++k) loop.push_back(PointId(ring[k].idx));
-        for (std::size_t k = n; k < t; ++k) loop.push_back(PointId(ring[k - n].idx));  // wrapped
+        for (std::size_t k = 0; k < n; ++k)
+          if (m.on_model_face(tris[k])) cuts.push_back(k);
       } else {
-        for (std::size_t k = s; k < t; ++k) {
-          const std::size_t kk = k >= n ? k - n : k;
-          if (k > s && inserted[kk]) loop.push_back(d.tri_point[tris[kk].idx]);
-          loop.push_back(PointId(ring[kk].idx));
+        inserted.assign(n + 1, 0);
+        for (std::size_t k = 0; k < n; ++k) {
+          if (ring_position(m, ct, tris[k], a, b)) cuts.push_back(k);
+          else inserted[k] = char(ct.is_cut(tris[k]));
         }
-        if (!bounded && inserted[0]) loop.push_back(d.tri_point[tris[0].idx]);  // between ring[n-1] and ring[0]
+        if (closed) inserted[n] = inserted[0];
       }
-      // One cut on a closed ring (start == end, a fracture tip edge): the fan
-      // goes all the way round and closes on the start triangle's centre.
-      if (bounded && end != start) {
-        loop.push_back(d.tri_point[end.idx]);
-        if (d.edge_point[e].valid()) loop.push_back(d.edge_point[e]);
+      if (!closed) cuts.push_back(n);  // tris[n] is the closing boundary triangle
+      // The fan of tets ring[s .. t) (indices mod n on a closed ring), between the
+      // model-face (or cut) triangles tris[s] and tris[t] when `bounded`. tris has
+      // n + 1 entries and tris[n] == tris[0] on a closed ring, so t <= 2n - 1 maps
+      // to tris[t - n] past the end.
+      auto emit = [&](std::size_t s, std::size_t t, bool bounded) {
+        loop.clear();
+        const TriId start = tris[s], end = tris[t > n ? t - n : t];
+        if (bounded) loop.push_back(d.tri_point[start.idx]);
+        if constexpr (!kCuts) {
+          for (std::size_t k = s; k < std::min(t, n); ++k) loop.push_back(PointId(ring[k].idx));
+          for (std::size_t k = n; k < t; ++k) loop.push_back(PointId(ring[k - n].idx));  // wrapped
+        } else {
+          for (std::size_t k = s; k < t; ++k) {
+            const std::size_t kk = k >= n ? k - n : k;
+            if (k > s && inserted[kk]) loop.push_back(d.tri_point[tris[kk].idx]);
+            loop.push_back(PointId(ring[kk].idx));
+          }
+          if (!bounded && inserted[0]) loop.push_back(d.tri_point[tris[0].idx]);  // between ring[n-1] and ring[0]
+        }
+        // One cut on a closed ring (start == end, a fracture tip edge): the fan
+        // goes all the way round and closes on the start triangle's centre.
+        if (bounded && end != start) {
+          loop.push_back(d.tri_point[end.idx]);
+          if (d.edge_point[e].valid()) loop.push_back(d.edge_point[e]);
+        }
+        const TetId t0 = ring[s % n];
+        if (bounded) model_faces.push_back(std::uint32_t(pm.num_faces()));
+        pm.add_face(loop, sides.cell(t0, a), sides.cell(t0, b),
+                    FaceKind::Interior, 0);
+      };
+      if (cuts.empty()) {
+        emit(0, n, false);  // interior edge: closed ring, no model face
+      } else if (!closed) {
+        for (std::size_t j = 0; j + 1 < cuts.size(); ++j) emit(cuts[j], cuts[j + 1], true);
+      } else {
+        for (std::size_t j = 0; j < cuts.size(); ++j)
+          emit(cuts[j], j + 1 < cuts.size() ? cuts[j + 1] : cuts[0] + n, true);
       }
-      const TetId t0 = ring[s % n];
-      if (bounded) model_faces.push_back(std::uint32_t(pm.num_faces()));
-      pm.add_face(loop, sides.cell(t0, a), sides.cell(t0, b),
-                  FaceKind::Interior, 0);
-    };
-    if (cuts.empty()) {
-      emit(0, n, false);  // interior edge: closed ring, no model face
-    } else if (!closed) {
-      for (std::size_t j = 0; j + 1 < cuts.size(); ++j) emit(cuts[j], cuts[j + 1], true);
-    } else {
-      for (std::size_t j = 0; j < cuts.size(); ++j)
-        emit(cuts[j], j + 1 < cuts.size() ? cuts[j + 1] : cuts[0] + n, true);
-    }
+    });
   }
 }
 
@@ -289,6 +295,7 @@ template <bool kCuts>
 struct EdgeFaceBlock {
   PolyMesh faces;
   std::vector<std::uint32_t> model_faces;
+  std::size_t walked = 0;  // tets visited by the ring walks of the block's edges
 };
 
 // Room for the faces of n edges in a block (make_all_edge_faces).
@@ -321,15 +328,16 @@ void append_faces(PolyMesh& pm, std::vector<std::uint32_t>& model_faces, const E
 // process's memory peak ~2 MB above the live data (twomat 100k, the split's
 // final build). A block's arrays are reserved for one face of 6 points per
 // edge (every tet is in the rings of its 6 edges, and a mesh has more edges
-// than tets); a block that needs more grows.
+// than tets); a block that needs more grows. Returns the number of tets the
+// ring walks visited (6 per tet when every chain of every edge was walked).
 template <bool kCuts>
-void make_all_edge_faces(const ClassifiedTetMesh& m, const CutTopology& ct, const VertexSides& sides,
-                         const DualPoints& d, PolyMesh& pm, std::vector<std::uint32_t>& model_faces,
-                         std::span<const char> active) {
+std::size_t make_all_edge_faces(const ClassifiedTetMesh& m, const CutTopology& ct, const VertexSides& sides,
+                                const DualPoints& d, PolyMesh& pm, std::vector<std::uint32_t>& model_faces,
+                                std::span<const char> active) {
   constexpr std::size_t kBlock = 2048;
   const std::size_t ne = m.num_edges();
   const std::size_t tokens = 2 * std::size_t(std::max(1, tbb::this_task_arena::max_concurrency()));
-  std::size_t next = 0;
+  std::size_t next = 0, walked = 0;
   tbb::parallel_pipeline(
       tokens,
       tbb::make_filter<void, std::size_t>(tbb::filter_mode::serial_in_order,
@@ -345,12 +353,53 @@ void make_all_edge_faces(const ClassifiedTetMesh& m, const CutTopology& ct, cons
                 auto b = std::make_shared<EdgeFaceBlock>();
                 reserve_block(b->faces, std::min(ne, e0 + kBlock) - e0);
                 make_edge_faces<kCuts>(m, ct, sides, d, b->faces, b->model_faces, active, e0,
-                                       std::min(ne, e0 + kBlock));
+                                       std::min(ne, e0 + kBlock), b->walked);
                 return b;
               }) &
           tbb::make_filter<std::shared_ptr<EdgeFaceBlock>, void>(
-              tbb::filter_mode::serial_in_order,
-              [&](const std::shared_ptr<EdgeFaceBlock>& b) { append_faces(pm, model_faces, *b); }));
+              tbb::filter_mode::serial_in_order, [&](const std::shared_ptr<EdgeFaceBlock>& b) {
+                append_faces(pm, model_faces, *b);
+                walked += b->walked;
+              }));
+  return walked;
+}
+
+// Every tet lies around its 6 edges, so the ring walks of all edges visit
+// 6 tets per tet exactly when every chain of every edge was walked. Fewer
+// happens only when the tets around some edge hold a closed chain and another
+// one, which winds round the edge more than once: the tets overlap there
+// (proofs/edge_chains.md E1). Such a mesh is refused (InputError naming the
+// edge, input numbering) rather than given a dual with open cells. The edge
+// is found only on this error path: the tets around each edge counted
+// against its walks.
+void refuse_overlapping_rings(const ClassifiedTetMesh& m, std::size_t walked) {
+  if (walked == 6 * m.num_tets()) [[likely]]
+    return;
+  std::vector<std::uint32_t> around(m.num_edges(), 0);
+  for (std::size_t t = 0; t < m.num_tets(); ++t)
+    for (int k = 0; k < 6; ++k) ++around[m.tet_edge(TetId(t), k).idx];
+  std::vector<TetId> ring;
+  std::vector<TriId> tris;
+  for (std::size_t e = 0; e < m.num_edges(); ++e) {
+    std::size_t n = 0;
+    m.for_each_edge_chain(EdgeId(e), ring, tris, [&](bool) { n += ring.size(); });
+    if (n == around[e]) continue;
+    // Every chain of the edge, the closed ones counted apart (for the message).
+    bool closed;
+    m.edge_ring(EdgeId(e), ring, tris, closed);
+    std::size_t in_rings = closed ? ring.size() : 0;
+    for (TetId start : m.other_chain_starts(EdgeId(e), ring)) {
+      std::vector<TetId> chain;
+      m.edge_ring_from(EdgeId(e), start, chain, tris, closed);
+      in_rings += closed ? chain.size() : 0;
+    }
+    const auto [a, b] = m.edge(EdgeId(e));
+    throw InputError(m.source(),
+                     "edge (" + std::to_string(m.input_vertex(a) + 1) + ", " + std::to_string(m.input_vertex(b) + 1) + ")",
+                     "the tets around this edge overlap: " + std::to_string(in_rings) +
+                         " of them close a ring round it and " + std::to_string(around[e] - in_rings) +
+                         (around[e] - in_rings == 1 ? " more lies" : " more lie") + " around it too");
+  }
 }
 
 // Vertex v -> the triangles of M ∪ cut(v) through v (CSR, triangles
@@ -731,8 +780,9 @@ DualDraft build_dual_draft(const ClassifiedTetMesh& m, const DualParams& params,
   t0 = Clock::now();
   std::vector<std::uint32_t> model_faces;
   const std::span<const char> active = scope ? scope->active : std::span<const char>();
-  if (ct.active) make_all_edge_faces<true>(m, ct, sides, d, pm, model_faces, active);
-  else make_all_edge_faces<false>(m, ct, sides, d, pm, model_faces, active);
+  const std::size_t walked = ct.active ? make_all_edge_faces<true>(m, ct, sides, d, pm, model_faces, active)
+                                       : make_all_edge_faces<false>(m, ct, sides, d, pm, model_faces, active);
+  if (active.empty()) refuse_overlapping_rings(m, walked);  // a scoped dual walks some edges only
   const std::size_t first_cap = pm.num_faces();
   make_caps(m, ct, sides, d, pm, st, active);  // every cap has model points
   for (std::size_t f = first_cap; f < pm.num_faces(); ++f) model_faces.push_back(std::uint32_t(f));

@@ -68,23 +68,25 @@ void check_cuts(const ClassifiedTetMesh& m, const VertexCuts& c) {
 // (|C_a(e)| > 0, |C_b(e)| > 0). C_x(e) = (M ∪ cut(x)) ∩ T(e), P = C_a ∪ C_b.
 // Not a stop edge iff |P| ∈ {0, 2} and each of C_a, C_b is empty or P: only
 // then does every cell at a and at b meet the midpoint in exactly two faces
-// (proofs/dual_cuts.md, rule S), so that it can be left out.
+// (proofs/dual_cuts.md, rule S), so that it can be left out. T(e) holds the
+// triangles of every chain of e (proofs/edge_chains.md; an edge with several
+// chains has boundary triangles in each, so it is a model edge anyway).
 struct EdgeStop { bool stop, caps_a, caps_b; };
 
 EdgeStop edge_stop(const ClassifiedTetMesh& m, const CutTopology& ct, EdgeId e, std::vector<TetId>& ring,
                    std::vector<TriId>& tris) {
-  const auto [a, b] = m.edge(e);
-  bool closed;
-  m.edge_ring(e, ring, tris, closed);
-  const std::size_t nk = closed ? ring.size() : ring.size() + 1;
+  const VertexId a = m.edge(e)[0], b = m.edge(e)[1];  // not a structured binding: the lambda captures them
   std::size_t p = 0, ca = 0, cb = 0;
-  for (std::size_t k = 0; k < nk; ++k) {
-    const bool mf = m.on_model_face(tris[k]);
-    const bool in_a = mf || ct.cut_by(m, tris[k], a), in_b = mf || ct.cut_by(m, tris[k], b);
-    p += in_a || in_b;
-    ca += in_a;
-    cb += in_b;
-  }
+  m.for_each_edge_chain(e, ring, tris, [&](bool closed) {
+    const std::size_t nk = closed ? ring.size() : ring.size() + 1;
+    for (std::size_t k = 0; k < nk; ++k) {
+      const bool mf = m.on_model_face(tris[k]);
+      const bool in_a = mf || ct.cut_by(m, tris[k], a), in_b = mf || ct.cut_by(m, tris[k], b);
+      p += in_a || in_b;
+      ca += in_a;
+      cb += in_b;
+    }
+  });
   const bool keep = (p == 0 || p == 2) && (ca == 0 || ca == p) && (cb == 0 || cb == p);
   return {m.edge_class(e).dim == 1 || !keep, ca > 0, cb > 0};
 }

@@ -68,6 +68,15 @@ std::int32_t sheet_tag(const RandomMeshParams& p, const Point3& ga, const Point3
 
 bool in_notch(const Point3& g) { return g.x > 0.5 && g.y > 0.5 && g.z > 0.5; }
 
+// RandomMeshParams::touching: the region of a tet with centroid g, 0 for a
+// removed one.
+std::int32_t touching_region(const Point3& g) {
+  if (g.z < 0.5) return 1;
+  if (g.x < 0.5 && g.y < 0.5) return 2;
+  if (g.x > 0.5 && g.y > 0.5) return 3;
+  return 0;
+}
+
 // Number of face-connected groups among `star` (tets sharing 3 vertices are
 // neighbours); star is the set of kept tets around one vertex or edge.
 std::size_t star_components(const TetSoup& soup, const std::vector<std::uint32_t>& star) {
@@ -165,6 +174,8 @@ TetSoup random_classified_mesh(const RandomMeshParams& params) {
   if (params.num_points < 0) throw UsageError("random mesh: num_points must be >= 0");
   if (params.regions != 1 && params.regions != 2)
     throw UsageError("random mesh: regions must be 1 or 2");
+  if (params.notch && params.touching)
+    throw UsageError("random mesh: notch and touching exclude each other (the notch is kept manifold)");
 
   TetSoup soup;
   soup.source = "<random mesh seed " + std::to_string(params.seed) + ">";
@@ -176,6 +187,8 @@ TetSoup random_classified_mesh(const RandomMeshParams& params) {
   if (params.notch)  // the notch's corners, so its edges can be in the mesh
     for (int k = 0; k < 7; ++k)
       input.push_back({k & 1 ? 1.0 : 0.5, k & 2 ? 1.0 : 0.5, k & 4 ? 1.0 : 0.5});
+  if (params.touching)  // the line where the upper blocks touch
+    for (int k = 0; k <= 4; ++k) input.push_back({0.5, 0.5, 0.5 + 0.125 * k});
   std::mt19937_64 rng(params.seed);
   for (int i = 0; i < params.num_points; ++i) {
     Point3 p{open_unit(rng()), open_unit(rng()), open_unit(rng())};
@@ -213,6 +226,11 @@ TetSoup random_classified_mesh(const RandomMeshParams& params) {
   }
 
   std::vector<bool> removed(soup.tets.size(), false);
+  if (params.touching)
+    for (std::size_t t = 0; t < soup.tets.size(); ++t) {
+      soup.tet_region[t] = touching_region(centroid(soup.points, soup.tets[t]));
+      removed[t] = soup.tet_region[t] == 0;
+    }
   if (params.notch) {
     for (std::size_t t = 0; t < soup.tets.size(); ++t) removed[t] = in_notch(centroid(soup.points, soup.tets[t]));
     keep_notch_manifold(soup, removed);
@@ -236,7 +254,7 @@ TetSoup random_classified_mesh(const RandomMeshParams& params) {
       }
     }
   }
-  if (params.notch) remove_tets(soup, removed);
+  if (params.notch || params.touching) remove_tets(soup, removed);
   if (params.unattached) add_unattached(soup, params.fracture);
   return soup;
 }

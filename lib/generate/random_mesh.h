@@ -41,6 +41,16 @@ struct RandomMeshParams {
   // boundary has re-entrant edges and a re-entrant vertex. With fracture sheets
   // the sheets inside the notch go with their tets.
   bool notch = false;
+  // Three materials and the outside meeting along a line, as where the
+  // materials of a labelled image touch (meshed by CGAL Mesh_3): tets whose
+  // centroids have z < 0.5 are region 1; above, those with x, y < 0.5 region
+  // 2, with x, y > 0.5 region 3, and the tets of the other two quadrants are
+  // removed (`regions` is ignored). Points on the line x = y = 0.5 (z = 0.5,
+  // 0.625, ..., 1) are added. The two upper blocks then touch along edges
+  // and at vertices near that line with the outside on both sides: edges
+  // whose tets fall into several chains (proofs/edge_chains.md), which the
+  // mesh keeps (unlike the notch).
+  bool touching = false;
   // Adds what real files carry beside the tets (io/unattached.h): three points
   // above the box used by no tet, a construction point (corner, tag
   // kRandomUnattachedTag) on one of them, a free curve and a free sheet
@@ -64,7 +74,8 @@ inline constexpr std::int32_t kRandomUnattachedTag = 900;
 // lie on opposite sides of z = 0.5 and both have x < 0.6 — a zigzag sheet that
 // ends inside the mesh (fracture tips). Boundary and interface triangles are
 // not listed (classify() infers them); full_classification = false.
-// Throws UsageError on num_points < 0 or regions not in {1, 2}.
+// Throws UsageError on num_points < 0, regions not in {1, 2}, or notch and
+// touching together.
 TetSoup random_classified_mesh(const RandomMeshParams& params);
 
 // Box [0, nx·hx] x [0, ny·hy] x [0, nz·hz] of nx·ny·nz cells, each split into the

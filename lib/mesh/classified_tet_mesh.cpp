@@ -105,14 +105,13 @@ std::vector<TetId> ClassifiedTetMesh::edge_ring(EdgeId e, bool* closed) const {
   return tets;
 }
 
-void ClassifiedTetMesh::edge_ring(EdgeId e, std::vector<TetId>& tets, std::vector<TriId>& tris,
-                                  bool& closed) const {
-  // Walk forwards from the stored tet, across the face after each tet
+void ClassifiedTetMesh::edge_ring_from(EdgeId e, TetId start, std::vector<TetId>& tets, std::vector<TriId>& tris,
+                                       bool& closed) const {
+  // Walk forwards from the start tet, across the face after each tet
   // (a, b, id); a closed ring comes back to the start. An open ring hits the
   // boundary: then walk backwards from the start (across (a, b, ic)) and put
   // that part in front, so the ring starts at the boundary.
   const auto [a, b] = edge(e);
-  const TetId start = edge_tet(e);
   tets.clear();
   tris.clear();
   int ic, id;
@@ -145,6 +144,22 @@ void ClassifiedTetMesh::edge_ring(EdgeId e, std::vector<TetId>& tets, std::vecto
   std::rotate(tris.begin(), tris.begin() + std::ptrdiff_t(n_tris), tris.end());
 }
 
+std::vector<TetId> ClassifiedTetMesh::other_chain_starts(EdgeId e, std::span<const TetId> first) const {
+  // The tets around e are those of a's star that have b. Each one not yet in
+  // a chain starts the walk of its own chain (open: no chain of a mesh whose
+  // tets do not overlap is closed but the only one).
+  const auto [a, b] = edge(e);
+  std::vector<TetId> seen(first.begin(), first.end()), starts, tets;
+  std::vector<TriId> tris;
+  for (TetId t : vertex_tets(a)) {
+    if (local_index(t, b) < 0 || std::find(seen.begin(), seen.end(), t) != seen.end()) continue;
+    bool closed;
+    edge_ring_from(e, t, tets, tris, closed);
+    starts.push_back(t);
+    seen.insert(seen.end(), tets.begin(), tets.end());
+  }
+  return starts;
+}
 
 double ClassifiedTetMesh::tet_volume(TetId t) const {
   const auto& v = tets_[t.idx];
@@ -209,6 +224,7 @@ constexpr std::size_t kEdgeGuessSlack = 16;
   check_opposite_sides(m, b);
   number_triangles(m, num_tris);
   number_edges(m, b, num_tris);
+  find_multi_chain_edges(m);
   m.vertex_class_.assign(nv, ModelRef{});
   m.edge_class_.assign(m.edge_code_.size(), ModelRef{});
   m.tri_face_.assign(m.tri_code_.size(), ClassifiedTetMesh::kNoFace);
@@ -459,6 +475,59 @@ void TetMeshBuilder::number_edges(ClassifiedTetMesh& m, const LowVertexBuckets& 
         m.tet_edge_[6 * (recs[i].code >> 3) + (recs[i].code & 7)] = EdgeId(slot[recs[i].w]);
     }
   }
+}
+
+// An open chain of an edge begins and ends on a boundary triangle (a tet face
+// without a neighbour), and a closed chain has none; so an edge has several
+// chains iff more than two boundary triangles meet at it (proofs/
+// edge_chains.md E1). A tight pass gathers the tets with a boundary face
+// (kNoNeighbour is the only neighbour code with bit 31 set: codes stay below
+// 4 * 2^29, so a tet's four sign bits list its boundary faces), then a byte
+// per edge counts the boundary triangles at it (saturating). 22 instructions
+// per tet on twomat 100k (callgrind; build_topology takes ~1050). Not inlined
+// into build_topology: a phase of its own in profiles.
+[[gnu::noinline]] void TetMeshBuilder::find_multi_chain_edges(ClassifiedTetMesh& m) {
+  const std::size_t nt = m.tets_.size();
+  const std::uint32_t* adj = m.tet_adj_.data();
+  auto boundary_faces = [&](std::size_t t) {
+#if defined(__SSE2__)
+    return unsigned(_mm_movemask_ps(_mm_castsi128_ps(_mm_loadu_si128(reinterpret_cast<const __m128i*>(adj + 4 * t)))));
+#else
+    return unsigned(adj[4 * t] >> 31 | (adj[4 * t + 1] >> 31) << 1 | (adj[4 * t + 2] >> 31) << 2 |
+                    (adj[4 * t + 3] >> 31) << 3);
+#endif
+  };
+  // Tets with a boundary face, gathered without branches (written always,
+  // counted when the tet has one); at most one per boundary face.
+  const std::size_t num_boundary = 2 * m.tri_code_.size() - 4 * nt;  // 4 nt = 2 interior + boundary
+  std::vector<std::uint32_t> tets(num_boundary + 1);
+  std::size_t n = 0;
+  for (std::size_t t = 0; t < nt; ++t) {
+    tets[n] = std::uint32_t(t);
+    n += boundary_faces(t) != 0;
+  }
+  // The three local edges of local face i (the edges without local vertex i).
+  static constexpr int kFaceEdges[4][3] = {{3, 4, 5}, {1, 2, 5}, {0, 2, 4}, {0, 1, 3}};
+  std::vector<std::uint8_t> count(m.edge_code_.size(), 0);
+  std::vector<std::uint32_t> touched;  // edges with a boundary triangle (repeats allowed)
+  touched.reserve(3 * num_boundary);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t t = tets[k];
+    for (unsigned faces = boundary_faces(t); faces != 0; faces &= faces - 1)
+      for (int q : kFaceEdges[std::countr_zero(faces)]) {
+        const std::uint32_t e = m.tet_edge_[6 * t + std::size_t(q)].idx;
+        count[e] = std::uint8_t(count[e] + (count[e] < 255));
+        touched.push_back(e);
+      }
+  }
+  m.multi_chain_edges_.clear();
+  for (std::uint32_t e : touched)
+    if (count[e] > 2) {
+      m.multi_chain_edges_.push_back(EdgeId(e));
+      count[e] = 0;  // listed once
+    }
+  std::sort(m.multi_chain_edges_.begin(), m.multi_chain_edges_.end(),
+            [](EdgeId x, EdgeId y) { return x.idx < y.idx; });
 }
 
 }  // namespace polydual

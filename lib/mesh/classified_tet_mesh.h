@@ -183,12 +183,57 @@ class ClassifiedTetMesh {
   }
   // The tets around edge e in right-handed order about edge(e)[0] -> edge(e)[1].
   // For an edge on the boundary the ring is open and starts at a tet whose
-  // predecessor does not exist; `closed` tells which.
+  // predecessor does not exist; `closed` tells which. This is the chain of
+  // edge_tet(e) only (see for_each_edge_chain for the others).
   std::vector<TetId> edge_ring(EdgeId e, bool* closed = nullptr) const;
   // The ring with the triangles between its tets: tris.size() == tets.size()+1,
   // tris[k] precedes tets[k] and tris[k+1] follows it in the right-handed order;
   // for a closed ring tris.front() == tris.back().
-  void edge_ring(EdgeId e, std::vector<TetId>& tets, std::vector<TriId>& tris, bool& closed) const;
+  void edge_ring(EdgeId e, std::vector<TetId>& tets, std::vector<TriId>& tris, bool& closed) const {
+    edge_ring_from(e, edge_tet(e), tets, tris, closed);
+  }
+  // The same for the chain of tet `start` (which must have edge e).
+  void edge_ring_from(EdgeId e, TetId start, std::vector<TetId>& tets, std::vector<TriId>& tris,
+                      bool& closed) const;
+
+  // --- chains (proofs/edge_chains.md). The tets around an edge, joined across
+  // the triangles through it, fall into chains: one closed chain inside the
+  // mesh, one open chain on a manifold boundary, and one open chain per pass
+  // of the outside where the mesh touches itself along the edge (two tets
+  // sharing only that edge; three materials and the outside meeting there).
+  // Each open chain starts and ends on a boundary triangle, so an edge has
+  // several chains iff more than two boundary triangles meet at it (in a mesh
+  // whose tets do not overlap: a closed chain winds once round the edge and
+  // leaves room for no other).
+  // Edges with several chains, increasing (usually none).
+  std::span<const EdgeId> multi_chain_edges() const { return multi_chain_edges_; }
+  bool has_several_chains(EdgeId e) const {
+    return !multi_chain_edges_.empty() &&
+           std::binary_search(multi_chain_edges_.begin(), multi_chain_edges_.end(), e,
+                              [](EdgeId x, EdgeId y) { return x.idx < y.idx; });
+  }
+  // Calls f(closed) once per chain of e with tets and tris holding it as
+  // edge_ring() does: first the chain of edge_tet(e) (edge_ring() itself),
+  // then the others in the order of their first tet in vertex_tets(edge(e)[0]).
+  // Every tet around e is in exactly one call. f must not keep the vectors.
+  template <class F>
+  void for_each_edge_chain(EdgeId e, std::vector<TetId>& tets, std::vector<TriId>& tris, F&& f) const {
+    bool closed;
+    edge_ring(e, tets, tris, closed);
+    if (closed || !has_several_chains(e)) {
+      f(closed);
+      return;
+    }
+    const std::vector<TetId> starts = other_chain_starts(e, tets);
+    f(closed);
+    for (TetId s : starts) {
+      edge_ring_from(e, s, tets, tris, closed);
+      f(closed);
+    }
+  }
+  // One tet of each chain of e other than `first` (a chain of e), in the
+  // order of for_each_edge_chain.
+  std::vector<TetId> other_chain_starts(EdgeId e, std::span<const TetId> first) const;
   // Calls f(t) for each tet around an edge whose ring is closed (an edge
   // classified in a region is), in edge_ring's order, without building the ring.
   template <class F>
@@ -271,6 +316,7 @@ class ClassifiedTetMesh {
   std::vector<std::uint32_t> edge_code_;
   std::vector<std::uint32_t> vstar_off_;
   std::vector<TetId> vstar_;
+  std::vector<EdgeId> multi_chain_edges_;  // increasing
   std::vector<ModelRef> vertex_class_, edge_class_;
   // Per triangle: the tag of its model face, or kNoFace (4 bytes, not a
   // ModelRef's 8: triangles are only ever on a model face or on none).
@@ -309,6 +355,7 @@ class TetMeshBuilder {
   static void check_opposite_sides(const ClassifiedTetMesh& m, const LowVertexBuckets& b);
   static void number_triangles(ClassifiedTetMesh& m, std::size_t num_tris);
   static void number_edges(ClassifiedTetMesh& m, const LowVertexBuckets& b, std::size_t num_tris);
+  static void find_multi_chain_edges(ClassifiedTetMesh& m);
 };
 
 }  // namespace polydual
