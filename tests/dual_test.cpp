@@ -77,33 +77,9 @@ DualCounts check_invariants(const TetSoup& soup, bool planar, const std::string&
   ValidationReport r = validate(pm, &m);
   EXPECT_EQ(r.face_errors, 0u);
   EXPECT_EQ(r.closed_cells, r.cells);
-  // Known limitation (lib/dual/build_dual.cpp, make_caps): a model vertex where a
-  // single model edge ends inside a model face is not represented, and so a
-  // model edge both of whose model vertices are such has no dual edge along
-  // it. Anything else missing is a failure.
-  for (const std::string& miss : r.missing_model_entities) {
-    bool dangling = false;
-    if (miss.rfind("model edge ", 0) == 0) {
-      const int tag = std::stoi(miss.substr(11));
-      dangling = true;
-      for (const ModelEntity& v : m.model().entities[0])
-        if (std::count(v.bounds.begin(), v.bounds.end(), tag))
-          dangling &= std::count(r.missing_model_entities.begin(), r.missing_model_entities.end(),
-                                 "model vertex " + std::to_string(v.tag)) == 1;
-    }
-    if (miss.rfind("model vertex ", 0) == 0) {
-      const int tag = std::stoi(miss.substr(13));
-      for (std::size_t v = 0; v < m.num_vertices(); ++v) {
-        if (m.vertex_class(VertexId(v)) != ModelRef{0, tag}) continue;
-        int model_edges = 0;
-        for (std::size_t e = 0; e < m.num_edges(); ++e)
-          if (m.edge_class(EdgeId(e)).dim == 1 && (m.edge(EdgeId(e))[0] == VertexId(v) || m.edge(EdgeId(e))[1] == VertexId(v)))
-            ++model_edges;
-        dangling = model_edges == 1;
-      }
-    }
-    EXPECT_TRUE(dangling) << miss;
-  }
+  // Every model entity is on the dual (L4), also a model vertex where a single
+  // model edge ends inside a model face (build_dual.cpp add_cap).
+  EXPECT_TRUE(r.missing_model_entities.empty()) << r.missing_model_entities.front();
   EXPECT_EQ(pm.num_cells(), count_sides(m));
   // Interior faces: two distinct cells; external faces: one.
   for (std::size_t f = 0; f < pm.num_faces(); ++f) {
@@ -114,7 +90,6 @@ DualCounts check_invariants(const TetSoup& soup, bool planar, const std::string&
   for (std::size_t v = 0; v < m.num_vertices(); ++v) {
     if (m.vertex_class(VertexId(v)).dim != 0) continue;
     const std::string name = "model vertex " + std::to_string(m.vertex_class(VertexId(v)).tag);
-    if (std::count(r.missing_model_entities.begin(), r.missing_model_entities.end(), name)) continue;
     bool found = false;
     for (std::size_t p = 0; p < pm.num_points() && !found; ++p)
       found = pm.point_class[p] == m.vertex_class(VertexId(v)) && pm.points[p] == m.point(VertexId(v));

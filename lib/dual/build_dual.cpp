@@ -506,23 +506,45 @@ struct CapRuns {
   }
 };
 
-// The loop of the cap of the run in runs.seq around v.
-void cap_loop(const ClassifiedTetMesh& m, const DualPoints& d, VertexId v, std::span<const TriId> L,
+// The loop of the cap of the run in runs.seq around v. Returns true when the
+// run leaves and re-enters through the same model edge (a model edge ending
+// at v inside the face, such as the seam of a Gmsh sphere at its pole): the
+// loop [edge midpoint, triangle points...] then winds once round v, which
+// make_caps puts on the cap by splitting it (add_cap).
+bool cap_loop(const ClassifiedTetMesh& m, const DualPoints& d, VertexId v, std::span<const TriId> L,
               const CapRuns& runs, bool closed, std::vector<PointId>& loop) {
   const auto& seq = runs.seq;
   loop.clear();
   if (!closed) loop.push_back(d.edge_point[m.triangle_edge(L[seq.front().k], v, seq.front().p).idx]);
   for (const CapRuns::Oriented& o : seq) loop.push_back(d.tri_point[L[o.k].idx]);
-  // A run that leaves and re-enters through the same model edge (a model
-  // edge ending at v inside the face) closes through that edge's midpoint
-  // once: going out to v and back would only add a spike (a repeated point
-  // no polyhedral format accepts). Known limitation: if every cap at v
-  // closes this way, the model vertex v has no dual point (validate()
-  // reports it as missing).
-  if (!closed && seq.front().p != seq.back().q) {
-    loop.push_back(d.edge_point[m.triangle_edge(L[seq.back().k], v, seq.back().q).idx]);
-    if (d.vert_point[v.idx].valid()) loop.push_back(d.vert_point[v.idx]);
+  if (closed) return false;
+  if (seq.front().p == seq.back().q) return true;
+  loop.push_back(d.edge_point[m.triangle_edge(L[seq.back().k], v, seq.back().q).idx]);
+  if (d.vert_point[v.idx].valid()) loop.push_back(d.vert_point[v.idx]);
+  return false;
+}
+
+// Adds the cap `loop` as one face, or, when it winds round the model vertex
+// v through one model edge's midpoint e (cap_loop's true: loop = e, t1..tk),
+// as the two faces (v, e, t1..tj) and (v, tj..tk, e), j = ceil(k/2): the
+// model vertex gets its dual point (going out to v and back through e in one
+// loop would repeat e, which no polyhedral format accepts). The edges (v, e)
+// and (v, tj) are used once each way by the two faces, the rest as by the
+// one loop: the cell stays closed (proofs/dual_invariants.md L1).
+void add_cap(PolyMesh& pm, const std::vector<PointId>& loop, bool round_v, PointId v_point, CellId owner,
+             CellId neigh, FaceKind kind, std::int32_t tag) {
+  const std::size_t k = loop.size() - 1;  // the triangle points t1..tk follow e
+  if (!round_v || !v_point.valid() || k < 2) {
+    pm.add_face(loop, owner, neigh, kind, tag);
+    return;
   }
+  const std::size_t j = (k + 1) / 2;
+  std::vector<PointId> a{v_point}, b{v_point};
+  a.insert(a.end(), loop.begin(), loop.begin() + static_cast<std::ptrdiff_t>(j + 1));  // e, t1..tj
+  b.insert(b.end(), loop.begin() + static_cast<std::ptrdiff_t>(j), loop.end());       // tj..tk
+  b.push_back(loop.front());                                                            // e
+  pm.add_face(a, owner, neigh, kind, tag);
+  pm.add_face(b, owner, neigh, kind, tag);
 }
 
 // STEP 7: capping faces. Around each vertex v, walk the triangles of M ∪
@@ -542,7 +564,7 @@ void make_caps(const ClassifiedTetMesh& m, const CutTopology& ct, const VertexSi
     for (std::uint32_t i0 = 0; i0 < runs.n; ++i0) {
       if (runs.visited[i0]) continue;
       const bool closed = runs.walk(i0);
-      cap_loop(m, d, v, L, runs, closed, loop);
+      const bool round_v = cap_loop(m, d, v, L, runs, closed, loop);
       // The loop follows the orientation of L[i0] (the walk's `first`, whose
       // orientation every triangle of the walk inherits), so the owner is the
       // side of the tet that L[i0]'s stored orientation points out of.
@@ -551,11 +573,12 @@ void make_caps(const ClassifiedTetMesh& m, const CutTopology& ct, const VertexSi
       const CellId owner = sides.cell(t0, v);
       const CellId neigh = t1.valid() ? sides.cell(t1, v) : CellId::invalid();
       if (owner == neigh) ++st.slit_faces;
+      const PointId vp = d.vert_point[v.idx];
       if (m.on_model_face(f0)) {
         const std::int32_t tag = m.triangle_class(f0).tag;
-        pm.add_face(loop, owner, neigh, m.model().face_kind(tag), tag);
+        add_cap(pm, loop, round_v, vp, owner, neigh, m.model().face_kind(tag), tag);
       } else {
-        pm.add_face(loop, owner, neigh, FaceKind::Interior, 0);
+        add_cap(pm, loop, round_v, vp, owner, neigh, FaceKind::Interior, 0);
       }
     }
   }
