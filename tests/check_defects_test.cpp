@@ -20,6 +20,7 @@
 #include "generate/domains.h"
 #include "io/vtu_poly_writer.h"
 #include "run_command.h"
+#include "vtu_text_edit.h"
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
@@ -75,19 +76,7 @@ const CubeFiles& cube_files() {
   return f;
 }
 
-// The VTU text with the values of one DataArray rewritten by `edit`.
-std::string with_array(std::string s, const std::string& name,
-                       const std::function<void(std::vector<std::string>&)>& edit) {
-  const std::size_t begin = s.find('>', s.find("Name=\"" + name + "\"")) + 1;
-  const std::size_t end = s.find("</DataArray>", begin);
-  std::istringstream in(s.substr(begin, end - begin));
-  std::vector<std::string> values;
-  for (std::string v; in >> v;) values.push_back(v);
-  edit(values);
-  std::string text = "\n";
-  for (const std::string& v : values) text += " " + v;
-  return s.replace(begin, end - begin, text + "\n");
-}
+using polydual::testing::with_array;
 
 // The Medit file with vertex `v` (1-based) duplicated at the end and the
 // first tet that uses it given the copy: a crack along that tet's faces.

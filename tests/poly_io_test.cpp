@@ -20,6 +20,7 @@
 #include "io/foam_writer.h"
 #include "io/vtu_poly_reader.h"
 #include "io/vtu_poly_writer.h"
+#include "vtu_text_edit.h"
 
 namespace polydual {
 namespace {
@@ -227,20 +228,7 @@ TEST(VtuPoly, ReaderErrorsNameTheFile) {
   EXPECT_THROW(read_vtu_poly((p.parent_path() / "missing.vtu").string()), InputError);
 }
 
-// An ASCII VTU with the values of one DataArray rewritten by `edit` (its
-// values as text tokens, in file order).
-std::string with_array(std::string s, const std::string& name,
-                       const std::function<void(std::vector<std::string>&)>& edit) {
-  const std::size_t tag = s.find("Name=\"" + name + "\"");
-  const std::size_t begin = s.find('>', tag) + 1, end = s.find("</DataArray>", begin);
-  std::istringstream in(s.substr(begin, end - begin));
-  std::vector<std::string> values;
-  for (std::string v; in >> v;) values.push_back(v);
-  edit(values);
-  std::string text = "\n";
-  for (const std::string& v : values) text += " " + v;
-  return s.replace(begin, end - begin, text + "\n");
-}
+using polydual::testing::with_array;
 
 // The InputError of reading `bytes` ("(no error)" when it reads).
 std::pair<std::string, std::string> read_error(const std::string& bytes) {
