@@ -459,7 +459,8 @@ TEST(DualStages, ParamsValidateNamesFieldUnitAndRange) {
   DualParams p;
   p.cleanup = false;
   p.collapse_tolerance = 0.25;
-  EXPECT_EQ(p.to_json().dump(0), "{\"cleanup\":false,\"collapse_tolerance\":0.25}");
+  p.boundary = BoundaryMode::Caps;
+  EXPECT_EQ(p.to_json().dump(0), "{\"boundary\":\"caps\",\"cleanup\":false,\"collapse_tolerance\":0.25}");
   CleanupStats cs;
   cs.merged_points = 3;
   EXPECT_NE(cs.to_json().dump(0).find("\"merged_points\":3"), std::string::npos);

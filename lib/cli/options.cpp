@@ -46,6 +46,11 @@ const std::vector<OptionDef> kTable = {
      "dihedral angle (degrees) above which inferred model faces split",
      [](const Settings& d) { return num(d.params.classify.feature_angle_deg); },
      [](Settings& s, const std::string& v) { s.params.classify.feature_angle_deg = std::stod(v); }},
+    {"--boundary", K::Choice, "keep|caps", kNoRange, kNoRange,
+     "the dual's boundary: the primal's boundary triangulation, tiled by planar quads (each material's volume "
+     "kept exactly), or the paper's caps joining the boundary triangles' centres",
+     [](const Settings& d) { return std::string(boundary_mode_name(d.params.dual.boundary)); },
+     [](Settings& s, const std::string& v) { s.params.set_boundary(parse_boundary_mode(v)); }},
     {"--no-cleanup", K::Flag, "", kNoRange, kNoRange, "skip the exact merge and the short-edge collapse", nullptr,
      [](Settings& s, const std::string&) { s.params.dual.cleanup = false; }},
     {"--collapse-tol", K::Real, "X", DualParams::kMinCollapseTolerance, DualParams::kMaxCollapseTolerance, "short-edge collapse length, relative to the mean primal edge",

@@ -92,11 +92,26 @@ struct DualPoints {
   std::vector<char> pinned;            // per point, empty without whole cuts (cut_topology.h)
 };
 
+// Whether edge e / vertex v gets a dual point: on a model edge / at a model
+// vertex (the paper), where cuts say so (cut_topology.h), and in keep mode on
+// every model entity (an edge or vertex classified in dimension <= 2).
+bool edge_has_point(const ClassifiedTetMesh& m, const CutTopology& ct, bool keep, EdgeId e) {
+  if (keep && m.edge_class(e).dim <= 2) return true;
+  return ct.active ? ct.stop(e) : m.edge_class(e).dim == 1;
+}
+bool vertex_has_point(const ClassifiedTetMesh& m, const CutTopology& ct, bool keep, VertexId v) {
+  if (keep && m.vertex_class(v).dim <= 2) return true;
+  return ct.active ? ct.vertex_point[v.idx] != 0 : m.vertex_class(v).dim == 0;
+}
+
 // STEP 1-4. Tet centers get PointId == TetId. With cuts (cut_topology.h) the
 // cut triangles get centres among the model-face triangles' (classified in
 // their region), the stop edges midpoints and the vertices it names points.
 // Every point records the primal entity it comes from (point_origin).
-DualPoints make_points(const ClassifiedTetMesh& m, const CutTopology& ct, PolyMesh& pm, DualStats& st) {
+// Keep mode (BoundaryMode::Keep): model-face triangles get
+// triangle_inner_point(), never merged (tri_well_centred off), and every edge
+// and vertex on a model entity gets a point (keeps_point below).
+DualPoints make_points(const ClassifiedTetMesh& m, const CutTopology& ct, bool keep, PolyMesh& pm, DualStats& st) {
   DualPoints d;
   const std::size_t nt = m.num_tets();
   pm.points.resize(nt);
@@ -151,7 +166,8 @@ DualPoints make_points(const ClassifiedTetMesh& m, const CutTopology& ct, PolyMe
         d.tri_point.for_each_in_words(r.begin(), r.end(), [&](std::size_t f, std::uint32_t rank) {
           const bool model = m.on_model_face(TriId(f));
           const auto& v = m.triangle(TriId(f));
-          CentralPoint c = triangle_central_point(m.point(v[0]), m.point(v[1]), m.point(v[2]));
+          CentralPoint c = keep && model ? triangle_inner_point(m.point(v[0]), m.point(v[1]), m.point(v[2]))
+                                         : triangle_central_point(m.point(v[0]), m.point(v[1]), m.point(v[2]));
           if (pin && pinned(m, ct.cuts, PointOrigin{2, std::uint32_t(f)})) {
             c.p = barycentre(m, PointOrigin{2, std::uint32_t(f)});
             c.well_centred = false;
@@ -161,7 +177,7 @@ DualPoints make_points(const ClassifiedTetMesh& m, const CutTopology& ct, PolyMe
           pm.point_class[p] = model ? m.triangle_class(TriId(f)) : ModelRef{3, m.region(m.triangle_tet(TriId(f), 0))};
           pm.point_origin[p] = PointOrigin{2, std::uint32_t(f)};
           // A cut triangle's centre is never merged (cleanup_dual: no merge across cuts).
-          d.tri_well_centred[rank] = char(model && c.well_centred);
+          d.tri_well_centred[rank] = char(model && c.well_centred && !keep);
           n += c.well_centred;
         });
         return n;
@@ -172,7 +188,7 @@ DualPoints make_points(const ClassifiedTetMesh& m, const CutTopology& ct, PolyMe
   d.edge_point.init(m.num_edges());
   const std::uint32_t first_edge_point = std::uint32_t(pm.num_points());
   for (std::size_t e = 0; e < m.num_edges(); ++e) {
-    if (!(ct.active ? ct.stop(EdgeId(e)) : m.edge_class(EdgeId(e)).dim == 1)) continue;
+    if (!edge_has_point(m, ct, keep, EdgeId(e))) continue;
     const auto& v = m.edge(EdgeId(e));
     add(0.5 * (m.point(v[0]) + m.point(v[1])), m.edge_class(EdgeId(e)), 1, e);
     d.edge_point.set(e);
@@ -180,7 +196,7 @@ DualPoints make_points(const ClassifiedTetMesh& m, const CutTopology& ct, PolyMe
   d.edge_point.finish(first_edge_point);
   d.vert_point.assign(m.num_vertices(), PointId::invalid());
   for (std::size_t v = 0; v < m.num_vertices(); ++v)
-    if (ct.active ? ct.vertex_point[v] != 0 : m.vertex_class(VertexId(v)).dim == 0) {
+    if (vertex_has_point(m, ct, keep, VertexId(v))) {
       d.vert_point[v] = PointId(pm.num_points());
       add(m.point(VertexId(v)), m.vertex_class(VertexId(v)), 0, v);
     }
@@ -547,15 +563,63 @@ void add_cap(PolyMesh& pm, const std::vector<PointId>& loop, bool round_v, Point
   pm.add_face(b, owner, neigh, kind, tag);
 }
 
+// Keep mode's cap of the model-face run in runs.seq around v (BoundaryMode::
+// Keep): the quads (v, mid(v p), centre(t), mid(v q)) of its triangles
+// t = (v, p, q), consecutive ones merged while their triangles are coplanar
+// (EXACT: orient3d of the two triangles' four vertices is zero), each group
+// one face [v, mid(v p_i), c_i, mid(v q_i), c_i+1, ..., c_j, mid(v q_j)] in the
+// run's orientation (the caps' own). A closed run whose triangles are all
+// coplanar is the one face [mid(v p_0), c_0, mid(v p_1), c_1, ...] round v
+// (v lies inside it: no point needed there). A run that leaves and re-enters
+// through one model edge (a pole on a seam: p_0 == q_last) is never one group,
+// whose loop would repeat that edge's midpoint: it is cut in two at its middle.
+void keep_cap_faces(const ClassifiedTetMesh& m, const DualPoints& d, VertexId v, std::span<const TriId> L,
+                    const CapRuns& runs, bool closed, std::vector<std::vector<PointId>>& faces) {
+  const auto& seq = runs.seq;
+  const std::size_t n = seq.size();
+  faces.clear();
+  auto mid = [&](std::size_t i, VertexId w) { return d.edge_point[m.triangle_edge(L[seq[i].k], v, w).idx]; };
+  auto centre = [&](std::size_t i) { return d.tri_point[L[seq[i].k].idx]; };
+  // starts[i]: a group starts at seq[i] (its triangle is not coplanar with the previous one).
+  std::vector<char> starts(n, 0);
+  std::size_t num_starts = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (i == 0 && !closed) { starts[0] = 1; ++num_starts; continue; }
+    const auto& a = seq[(i + n - 1) % n];
+    starts[i] = char(orient3d(m.point(v), m.point(a.p), m.point(a.q), m.point(seq[i].q)) != Sign::Zero);
+    num_starts += starts[i];
+  }
+  if (closed && num_starts == 0) {
+    faces.emplace_back();
+    for (std::size_t i = 0; i < n; ++i) {
+      faces.back().push_back(mid(i, seq[i].p));
+      faces.back().push_back(centre(i));
+    }
+    return;
+  }
+  if (!closed && num_starts == 1 && seq.front().p == seq.back().q) starts[n / 2] = 1;  // n >= 2 round a pole
+  std::size_t first = 0;
+  while (!starts[first]) ++first;
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t i = (first + k) % n;
+    if (starts[i]) faces.push_back({d.vert_point[v.idx], mid(i, seq[i].p)});
+    faces.back().push_back(centre(i));
+    faces.back().push_back(mid(i, seq[i].q));
+  }
+}
+
 // STEP 7: capping faces. Around each vertex v, walk the triangles of M ∪
 // cut(v) containing v through edges (v,w) that are not stop edges (such an
 // edge has exactly two of them, of one model face or both cut): each walk is
 // a run. A cap on cut triangles is an interior face between two sides of v.
+// In keep mode (BoundaryMode::Keep) a run on a model face is tiled by
+// keep_cap_faces instead; cut runs are capped as in the paper either way.
 void make_caps(const ClassifiedTetMesh& m, const CutTopology& ct, const VertexSides& sides, const DualPoints& d,
-               PolyMesh& pm, DualStats& st, std::span<const char> active) {
+               bool keep, PolyMesh& pm, DualStats& st, std::span<const char> active) {
   const VertexTriangles vt = vertex_cap_triangles(m, ct);
   CapRuns runs;
   std::vector<PointId> loop;
+  std::vector<std::vector<PointId>> tiles;
   for (std::size_t vi = 0; vi < m.num_vertices(); ++vi) {
     const VertexId v(vi);
     const std::span<const TriId> L = vt.of(vi);
@@ -564,7 +628,9 @@ void make_caps(const ClassifiedTetMesh& m, const CutTopology& ct, const VertexSi
     for (std::uint32_t i0 = 0; i0 < runs.n; ++i0) {
       if (runs.visited[i0]) continue;
       const bool closed = runs.walk(i0);
-      const bool round_v = cap_loop(m, d, v, L, runs, closed, loop);
+      const bool tiled = keep && m.on_model_face(L[i0]);
+      const bool round_v = !tiled && cap_loop(m, d, v, L, runs, closed, loop);
+      if (tiled) keep_cap_faces(m, d, v, L, runs, closed, tiles);
       // The loop follows the orientation of L[i0] (the walk's `first`, whose
       // orientation every triangle of the walk inherits), so the owner is the
       // side of the tet that L[i0]'s stored orientation points out of.
@@ -574,7 +640,10 @@ void make_caps(const ClassifiedTetMesh& m, const CutTopology& ct, const VertexSi
       const CellId neigh = t1.valid() ? sides.cell(t1, v) : CellId::invalid();
       if (owner == neigh) ++st.slit_faces;
       const PointId vp = d.vert_point[v.idx];
-      if (m.on_model_face(f0)) {
+      if (tiled) {
+        const std::int32_t tag = m.triangle_class(f0).tag;
+        for (const auto& tile : tiles) pm.add_face(tile, owner, neigh, m.model().face_kind(tag), tag);
+      } else if (m.on_model_face(f0)) {
         const std::int32_t tag = m.triangle_class(f0).tag;
         add_cap(pm, loop, round_v, vp, owner, neigh, m.model().face_kind(tag), tag);
       } else {
@@ -698,17 +767,16 @@ double mean_edge_length(const ClassifiedTetMesh& m) {
 // they add (each triangle centre in <= 6 fan faces and 3 caps).
 // With cuts the points are still counted exactly (cut triangles, stop edges,
 // vertex points); faces may then outgrow the bound (more arcs per ring).
-void reserve_dual(const ClassifiedTetMesh& m, const CutTopology& ct, PolyMesh& pm) {
+void reserve_dual(const ClassifiedTetMesh& m, const CutTopology& ct, bool keep, PolyMesh& pm) {
   std::size_t nmf = 0, nme = 0, nmv = 0;
   for (std::size_t f = 0; f < m.num_triangles(); ++f) nmf += m.on_model_face(TriId(f)) || ct.is_cut(TriId(f));
-  for (std::size_t e = 0; e < m.num_edges(); ++e) nme += ct.active ? ct.stop(EdgeId(e)) : m.edge_class(EdgeId(e)).dim == 1;
-  for (std::size_t v = 0; v < m.num_vertices(); ++v)
-    nmv += ct.active ? ct.vertex_point[v] != 0 : m.vertex_class(VertexId(v)).dim == 0;
+  for (std::size_t e = 0; e < m.num_edges(); ++e) nme += edge_has_point(m, ct, keep, EdgeId(e));
+  for (std::size_t v = 0; v < m.num_vertices(); ++v) nmv += vertex_has_point(m, ct, keep, VertexId(v));
   const std::size_t np = m.num_tets() + nmf + nme + nmv;
   pm.points.reserve(np);
   pm.point_class.reserve(np);
   pm.point_origin.reserve(np);
-  const std::size_t nf = m.num_edges() + 2 * nmf + nme;
+  const std::size_t nf = m.num_edges() + (keep ? 3 : 2) * nmf + nme;
   pm.face_offsets.reserve(nf + 1);
   pm.face_owner.reserve(nf);
   pm.face_neighbour.reserve(nf);
@@ -719,13 +787,24 @@ void reserve_dual(const ClassifiedTetMesh& m, const CutTopology& ct, PolyMesh& p
 
 }  // namespace
 
+const char* boundary_mode_name(BoundaryMode m) { return m == BoundaryMode::Keep ? "keep" : "caps"; }
+
+BoundaryMode parse_boundary_mode(std::string_view s) {
+  if (s == "keep") return BoundaryMode::Keep;
+  if (s == "caps") return BoundaryMode::Caps;
+  throw UsageError("DualParams::boundary: '" + std::string(s) + "' is not a boundary mode (keep or caps)");
+}
+
 void DualParams::validate() const {
+  if (boundary != BoundaryMode::Keep && boundary != BoundaryMode::Caps)
+    throw UsageError("DualParams::boundary: " + std::to_string(int(boundary)) + " is not a boundary mode (keep or caps)");
   check_param("DualParams::collapse_tolerance", "relative to the mean primal edge length",
               ParamRange{kMinCollapseTolerance, kMaxCollapseTolerance}, collapse_tolerance);
 }
 
 Json DualParams::to_json() const {
   Json j = Json::object();
+  j.set("boundary", boundary_mode_name(boundary));
   j.set("cleanup", cleanup);
   j.set("collapse_tolerance", collapse_tolerance);
   return j;
@@ -773,8 +852,10 @@ DualDraft build_dual_draft(const ClassifiedTetMesh& m, const DualParams& params,
   PolyMesh& pm = draft.mesh;
   auto t0 = Clock::now();
   const CutTopology ct = cut_topology(m, cuts);
-  reserve_dual(m, ct, pm);
-  DualPoints d = make_points(m, ct, pm, st);
+  const bool keep = params.boundary == BoundaryMode::Keep;
+  draft.keep_boundary = keep;
+  reserve_dual(m, ct, keep, pm);
+  DualPoints d = make_points(m, ct, keep, pm, st);
   st.seconds_points = since(t0);
 
   // The hints need only the points, the sides neither: both at once. The
@@ -807,7 +888,7 @@ DualDraft build_dual_draft(const ClassifiedTetMesh& m, const DualParams& params,
                                        : make_all_edge_faces<false>(m, ct, sides, d, pm, model_faces, active);
   if (active.empty()) refuse_overlapping_rings(m, walked);  // a scoped dual walks some edges only
   const std::size_t first_cap = pm.num_faces();
-  make_caps(m, ct, sides, d, pm, st, active);  // every cap has model points
+  make_caps(m, ct, sides, d, keep, pm, st, active);  // every cap has model points
   for (std::size_t f = first_cap; f < pm.num_faces(); ++f) model_faces.push_back(std::uint32_t(f));
   if (params.cleanup) draft.scan_faces = std::move(model_faces);
   st.seconds_faces = since(t0);

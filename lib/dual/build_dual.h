@@ -10,6 +10,7 @@
 #pragma once
 #include <cstdint>
 #include <span>
+#include <string_view>
 
 #include "core/json.h"
 #include "dual/cleanup.h"
@@ -20,7 +21,25 @@
 
 namespace polydual {
 
+// What the dual's boundary is (design §4.10).
+//   Caps: the paper's capping faces (IMR 2013 §2.7): around a boundary vertex v
+//     the cap joins the centres of v's model-face triangles (and the midpoints
+//     of its model edges, v itself at a model vertex); on a curved model face
+//     it cuts the corner at v, so a convex body loses volume.
+//   Keep: the dual's boundary is the primal's boundary triangulation. Every
+//     vertex on a model face, edge or vertex, and the midpoint of every edge
+//     on one, is a dual point; each model-face triangle t is tiled by the three
+//     planar quads (v_i, mid(v_i v_j), centre(t), mid(v_i v_k)), the quads
+//     around v merged where their triangles are exactly coplanar. The sum of
+//     the cells' volumes per material is then the primal's
+//     (proofs/dual_invariants.md L5).
+enum class BoundaryMode : std::uint8_t { Keep, Caps };
+const char* boundary_mode_name(BoundaryMode m);  // "keep" | "caps"
+BoundaryMode parse_boundary_mode(std::string_view s);  // UsageError on anything else
+
 struct DualParams {
+  // The dual's boundary (BoundaryMode above).
+  BoundaryMode boundary = BoundaryMode::Caps;
   // Run the cleanup (design §4.9): exact merge of coincident dual points, then
   // collapse of short edges. Off: build_dual_draft() finds no hints and
   // build_dual() skips cleanup_dual().

@@ -82,4 +82,12 @@ CentralPoint triangle_central_point(const Point3& a, const Point3& b, const Poin
   return {a + wb * u + wcc * v, wc};
 }
 
+CentralPoint triangle_inner_point(const Point3& a, const Point3& b, const Point3& c) {
+  Sign s[3];
+  triangle_circumcenter_barycentric_signs(a, b, c, s);
+  if (s[0] == Sign::Positive && s[1] == Sign::Positive && s[2] == Sign::Positive)
+    return triangle_central_point(a, b, c);
+  return {a + (1.0 / 3) * (b - a) + (1.0 / 3) * (c - a), false};
+}
+
 }  // namespace polydual

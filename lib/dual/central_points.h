@@ -27,4 +27,13 @@ CentralPoint tet_central_point(const Point3& a, const Point3& b, const Point3& c
 // that plane.
 CentralPoint triangle_central_point(const Point3& a, const Point3& b, const Point3& c);
 
+// The centre of a model-face triangle when the dual keeps the primal's
+// boundary (BoundaryMode::Keep): the circumcentre if it lies strictly inside
+// the triangle (EXACT: every barycentric sign positive), else the centroid, so
+// the three quads (vertex, midpoint, centre, midpoint) tiling the triangle are
+// never degenerate (a right triangle's circumcentre is its hypotenuse's
+// midpoint). well_centred: strictly inside. Computed as a + s(b-a) + t(c-a),
+// as triangle_central_point.
+CentralPoint triangle_inner_point(const Point3& a, const Point3& b, const Point3& c);
+
 }  // namespace polydual

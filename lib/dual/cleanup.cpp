@@ -105,8 +105,10 @@ std::size_t collapse_short_edges(const PolyMesh& pm, const DualDraft& d, UnionFi
   // dimension and keep the cut surface where the builder put it.
   const auto& origin = pm.point_origin;
   // Points pinned by a whole-cut vertex (C5) never collapse either.
+  // With the boundary kept (DualDraft::keep_boundary) only tet centres do.
   auto own = [&](std::uint32_t p) {
-    return (origin.empty() || origin[p].dim == pm.point_class[p].dim) && (d.pinned.empty() || !d.pinned[p]);
+    return (origin.empty() || origin[p].dim == pm.point_class[p].dim) && (d.pinned.empty() || !d.pinned[p]) &&
+           (!d.keep_boundary || pm.point_class[p].dim == 3);
   };
   // The length test comes first: it is almost always false, and the classes
   // are then never loaded.

@@ -39,6 +39,10 @@ struct DualDraft {
   // Absolute length (model units) below which an edge between two points of
   // equal classification is collapsed; 0: no collapse.
   double collapse_length = 0;
+  // Built in BoundaryMode::Keep: points on model entities never collapse
+  // (each lies on its own primal triangle, edge or vertex, and a collapse
+  // would move it off the boundary triangulation).
+  bool keep_boundary = false;
   // Built with a DualScope (build_dual.h): most points belong to no built
   // face. Such a dual lives for one split round only, so the cleanup drops
   // those points without shrinking the arrays (a shrink copies them, and in

@@ -46,9 +46,11 @@ Point3 BoundaryConstraints::closest(std::uint32_t i, const Point3& x) const {
   return closest_point_on_triangle(x, verts_[q.v[0].idx], verts_[q.v[1].idx], verts_[q.v[2].idx]);
 }
 
-BoundaryConstraints::BoundaryConstraints(const ClassifiedTetMesh& primal, const PolyMesh& mesh, bool lazy)
-    : verts_(primal.points()), cls_(mesh.point_class), mesh_(&mesh), lazy_(lazy) {
+BoundaryConstraints::BoundaryConstraints(const ClassifiedTetMesh& primal, const PolyMesh& mesh, bool lazy,
+                                         bool keep)
+    : verts_(primal.points()), cls_(mesh.point_class), mesh_(&mesh), lazy_(lazy), keep_(keep) {
   collect_primitives(primal);
+  if (keep_) collect_face_edges(primal);
   index_vertex_primitives();
   build_grid();
   assign_initial_primitives();
@@ -68,6 +70,33 @@ void BoundaryConstraints::collect_primitives(const ClassifiedTetMesh& primal) {
       prims_.push_back({{ev[0], ev[1], VertexId::invalid()}, 1, r.tag, static_cast<std::uint32_t>(e)});
     }
   }
+}
+
+// Segments of the edges inside model faces, after the model edges': the
+// segment primitives stay sorted by EdgeId within each kind, and own_primitive
+// looks an edge up in both.
+void BoundaryConstraints::collect_face_edges(const ClassifiedTetMesh& primal) {
+  for (std::size_t e = 0; e < primal.num_edges(); ++e)
+    if (primal.edge_class(EdgeId(e)).dim == 2) {
+      const auto& ev = primal.edge(EdgeId(e));
+      prims_.push_back({{ev[0], ev[1], VertexId::invalid()}, 1, kFaceEdgeTag, static_cast<std::uint32_t>(e)});
+    }
+}
+
+std::uint32_t BoundaryConstraints::own_primitive(std::size_t p) const {
+  if (mesh_->point_origin.size() != mesh_->num_points()) return kNone;
+  const PointOrigin o = mesh_->point_origin[p];
+  if (o.dim != 1 && o.dim != 2) return kNone;
+  auto find = [&](auto first, auto last) -> std::uint32_t {
+    const auto it = std::lower_bound(first, last, o.id, [](const Prim& q, std::uint32_t id) { return q.src < id; });
+    return it != last && it->src == o.id && it->dim == o.dim ? static_cast<std::uint32_t>(it - prims_.begin()) : kNone;
+  };
+  if (o.dim == 2) return find(prims_.begin(), prims_.begin() + num_tri_prims_);
+  // Model-edge segments, then face-edge segments: each run sorted by EdgeId.
+  const auto seg = prims_.begin() + num_tri_prims_;
+  const auto split = std::partition_point(seg, prims_.end(), [](const Prim& q) { return q.tag != kFaceEdgeTag; });
+  const std::uint32_t a = find(seg, split);
+  return a != kNone ? a : find(split, prims_.end());
 }
 
 // Vertex -> primitives (CSR, primitives increasing per vertex: deterministic walks).
@@ -163,6 +192,12 @@ void BoundaryConstraints::assign_initial_primitives() {
       const ModelRef r = cls_[p];
       if (r.dim == 3) dof_[p] = 3;
       if ((r.dim != 1 && r.dim != 2) || !entities.count({r.dim, r.tag}) || !is_finite(mesh_->points[p])) continue;
+      if (keep_) {  // the dimension of its own primitive; a vertex's point (none) stays fixed
+        const std::uint32_t own = own_primitive(p);
+        dof_[p] = own == kNone ? 0 : static_cast<std::uint8_t>(prims_[own].dim);
+        if (own != kNone && !lazy_) current_[p] = own;
+        continue;
+      }
       dof_[p] = static_cast<std::uint8_t>(r.dim);
       if (!lazy_) assign_initial(p);
     }
@@ -170,6 +205,10 @@ void BoundaryConstraints::assign_initial_primitives() {
 }
 
 void BoundaryConstraints::assign_initial(std::size_t p) {
+  if (keep_) {
+    current_[p] = own_primitive(p);
+    return;
+  }
   const ModelRef r = cls_[p];
   const bool origins = mesh_->point_origin.size() == mesh_->num_points();
   const std::uint32_t seed = origins ? origin_primitive(mesh_->point_origin[p], r) : kNone;
@@ -269,6 +308,10 @@ Point3 BoundaryConstraints::project(PointId p, const Point3& x, std::uint32_t* p
   std::uint32_t cur = start == kNone ? current_[p.idx] : start;
   const Prim& me = prims_[cur];
   Point3 y = closest(cur, x);
+  if (keep_) {  // its own triangle or edge only
+    if (prim) *prim = cur;
+    return y;
+  }
   double dy = norm2(y - x);
   for (int hop = 0; hop < kMaxHops; ++hop) {
     std::uint32_t next = cur;

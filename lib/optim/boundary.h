@@ -16,6 +16,15 @@
 // and repeats until the current one is the nearest (at most kMaxHops hops). The result
 // lies on a primitive, so it is on the original facetisation up to rounding, and
 // commit() makes that primitive current (re-centring the parametric space).
+//
+// Own-primitive constraints (keep = true, for a dual built with
+// BoundaryMode::Keep, build_dual.h): each boundary point stays on the primal
+// simplex it was made on, so the dual's boundary stays the primal's boundary
+// triangulation (proofs/dual_invariants.md L5). By the point's PointOrigin:
+// a model-face triangle's centre moves in that triangle only, an edge's
+// midpoint on that edge only (a model edge's or a model face's), a primal
+// vertex's point is fixed. project() is then the closest point of that one
+// primitive (no walk).
 #pragma once
 #include <array>
 #include <cstdint>
@@ -38,7 +47,8 @@ class BoundaryConstraints {
   // it visits, and ensures each before its first move, sees the same
   // constraints; --optimize untangle visits a few hundred of ~60k boundary
   // points at 100k tets). `mesh` must outlive a lazy instance.
-  BoundaryConstraints(const ClassifiedTetMesh& primal, const PolyMesh& mesh, bool lazy = false);
+  BoundaryConstraints(const ClassifiedTetMesh& primal, const PolyMesh& mesh, bool lazy = false,
+                      bool keep = false);
   // Lazy: finds p's initial primitive if not yet done (from p's current
   // position). Concurrent calls for different points are safe.
   void ensure(PointId p) {
@@ -58,6 +68,8 @@ class BoundaryConstraints {
   // Distance from x to p's model entity (exhaustive; for tests and checks).
   double distance_to_entity(PointId p, const Point3& x) const;
   std::size_t num_primitives() const { return prims_.size(); }
+  // Whether points keep their own primitive (the constructor's `keep`).
+  bool own_primitives() const { return keep_; }
 
  private:
   struct Prim {
@@ -91,6 +103,13 @@ class BoundaryConstraints {
   // that edge, or a primitive at that vertex) if it belongs to the point's
   // entity, else kNone.
   std::uint32_t origin_primitive(const PointOrigin& o, const ModelRef& r) const;
+  // keep_: the primitive of p's own triangle or edge (its PointOrigin), or
+  // kNone (a vertex's point, or a point whose origin has no primitive).
+  std::uint32_t own_primitive(std::size_t p) const;
+  // keep_: adds a segment primitive for every edge on a model face (tag
+  // kFaceEdgeTag: no model edge's walk enters it; keep_ walks nowhere).
+  void collect_face_edges(const ClassifiedTetMesh& primal);
+  static constexpr std::int32_t kFaceEdgeTag = INT32_MIN;
 
   std::vector<Point3> verts_;
   std::vector<Prim> prims_;                       // triangles by TriId, then segments by EdgeId
@@ -103,6 +122,7 @@ class BoundaryConstraints {
   std::vector<std::uint32_t> current_;
   const PolyMesh* mesh_ = nullptr;  // positions and origins of the points
   bool lazy_ = false;
+  bool keep_ = false;
   // Uniform grid over primitive bounding boxes (initial assignment only).
   Point3 lo_;
   double h_ = 1;

@@ -25,7 +25,8 @@ Context::Context(PolyMesh& m, const ClassifiedTetMesh* primal, const OptimParams
   lap("stencil");
   // The local schemes move only the points they visit and ensure() each
   // first (VertexNewton::optimise): their initial primitives are found then.
-  if (primal) bc = std::make_unique<BoundaryConstraints>(*primal, m, p.method != OptimParams::Method::Global);
+  if (primal)
+    bc = std::make_unique<BoundaryConstraints>(*primal, m, p.method != OptimParams::Method::Global, p.keep_boundary);
   lap("constraints");
   dof.assign(m.num_points(), 0);
   for (std::size_t i = 0; i < m.num_points(); ++i) {
@@ -285,6 +286,7 @@ Json OptimParams::to_json() const {
   j.set("worst_rounds", worst_rounds);
   j.set("fd_step", fd_step);
   j.set("planarity", planarity);
+  j.set("keep_boundary", keep_boundary);
   j.set("global_iterations_per_round", global_iterations_per_round);
   return j;
 }

@@ -110,6 +110,11 @@ struct OptimParams {
   static constexpr double kMaxPlanarity = 1000.0;
   // Global: L-BFGS iterations per round. Default 50.
   int global_iterations_per_round = 50;
+  // Boundary points keep their own primal simplex (BoundaryConstraints' own-
+  // primitive constraints, optim/boundary.h): set for a dual built with
+  // DualParams::boundary == Keep (PipelineParams::set_boundary keeps the two
+  // in step). Default false: points slide over their model entity (paper 3.3).
+  bool keep_boundary = false;
 
   // Ranges checked by validate() (and printed by the command's help).
   static constexpr int kMaxIterLimit = 100000;

@@ -1,5 +1,9 @@
 #include "pipeline/params.h"
 
+#include <string>
+
+#include "core/error.h"
+
 
 namespace polydual {
 
@@ -10,11 +14,16 @@ void PipelineParams::validate() const {
   dual.validate();
   optim.validate();
   split.validate();
+  if (optim.keep_boundary != (dual.boundary == BoundaryMode::Keep))
+    throw UsageError(std::string("PipelineParams: the dual's boundary is '") + boundary_mode_name(dual.boundary) +
+                     "' but the optimiser's constraints are for '" + (optim.keep_boundary ? "keep" : "caps") +
+                     "' (set both with set_boundary)");
 }
 
 Json PipelineParams::to_json() const {
   Json j = Json::object();
   j.set("feature_angle_deg", classify.feature_angle_deg);
+  j.set("boundary", boundary_mode_name(dual.boundary));
   j.set("cleanup", dual.cleanup);
   j.set("collapse_tolerance", dual.collapse_tolerance);
   // The optimiser's fields at the top level, as the summaries always had them.

@@ -19,7 +19,15 @@ struct PipelineParams {
   OptimParams optim;        // untangling and smoothing (method None skips the stage)
   SplitParams split;        // split of the cells still invalid (enabled = false skips the stage)
 
-  // Throws UsageError naming the first bad field, its unit and its range.
+  // The dual's boundary mode and the optimiser's matching constraints
+  // (DualParams::boundary, OptimParams::keep_boundary) together.
+  void set_boundary(BoundaryMode m) {
+    dual.boundary = m;
+    optim.keep_boundary = m == BoundaryMode::Keep;
+  }
+
+  // Throws UsageError naming the first bad field, its unit and its range, or
+  // a boundary mode the optimiser's constraints do not follow.
   void validate() const;
   Json to_json() const;
 };
