@@ -162,7 +162,8 @@ class Harness:
         d = self.wdir(domain, n)
         src = os.path.join(d, f"{domain}.msh")
         vtu = os.path.join(d, f"{variant}.vtu")
-        cmd = [self.polydual, "convert", src, "-o", vtu, "--json", "--optimize", opt,
+        # The paper's capping faces (design §4.10), whatever the command's default.
+        cmd = [self.polydual, "convert", src, "-o", vtu, "--json", "--boundary", "caps", "--optimize", opt,
                "--metric", metric, "--derivatives", deriv] + (PAPER_LOCAL if opt == "local" else [])
         cmd += EXTRA_FLAGS.get(variant, [])
         if inp == "tetopt":

@@ -111,7 +111,7 @@ TEST(CliOptions, HelpListsEveryOptionWithItsDefault) {
     std::vector<std::string> lines;
   };
   const Expect cases[] = {
-      {"convert", {"-o OUT", "--format vtu|foam", "--feature-angle DEG", "(default 30)", "--no-cleanup",
+      {"convert", {"-o OUT", "--format vtu|foam", "--feature-angle DEG", "(default 30)", "--boundary keep|caps", "--no-cleanup",
                    "--collapse-tol X", "(default 0.001)", "--optimize none|untangle|local|global", "(default local)",
                    "--metric q1|q2", "(default q1)", "--derivatives corrected|analytic|lagged|fd|exact", "(default corrected)",
                    "--max-iter N", "(default 20)", "--threads N", "--json"}},
