@@ -26,6 +26,7 @@
 #include "generate/random_mesh.h"
 #include "io/read_tet_mesh.h"
 #include "mesh/validate.h"
+#include "optim/boundary.h"
 #include "pipeline/convert.h"
 #include "pipeline/params.h"
 #include "run_command.h"
@@ -207,6 +208,53 @@ TEST(BoundaryKeep, RawDualOnRandomMeshes) {
       }
     }
   }
+}
+
+// The optimiser's own-primitive constraints (optim/boundary.h, keep = true):
+// a vertex's point has no freedom, a midpoint one (along its edge), a
+// triangle's centre two (in its triangle); a target far across the model face
+// projects onto the point's own simplex, where the paper's walk (keep = false)
+// moves a triangle's centre to another triangle.
+TEST(BoundaryKeep, ConstraintsHoldEachPointOnItsOwnSimplex) {
+  RandomMeshParams rp;
+  rp.seed = 3;
+  rp.num_points = 200;
+  rp.lattice_points = true;  // vertices on the box's faces and edges too
+  const ClassifiedTetMesh m = classify(random_classified_mesh(rp));
+  const PolyMesh pm = build_dual(m, keep_dual());
+  const BoundaryConstraints own(m, pm, false, true), walk(m, pm, false, false);
+  EXPECT_TRUE(own.own_primitives());
+  std::size_t vertices = 0, midpoints = 0, centres = 0, walked_off = 0;
+  for (std::size_t i = 0; i < pm.num_points(); ++i) {
+    const PointId p(i);
+    if (pm.point_class[i].dim != 1 && pm.point_class[i].dim != 2) continue;
+    const PointOrigin o = pm.point_origin[i];
+    const Point3 far = pm.points[i] + Vec3{0.37, -0.29, 0.41};
+    std::uint32_t prim = BoundaryConstraints::kNone;
+    const Point3 y = own.project(p, far, &prim);
+    if (o.dim == 0) {
+      ++vertices;
+      EXPECT_EQ(own.dof(p), 0) << i;
+    } else if (o.dim == 1) {
+      ++midpoints;
+      EXPECT_EQ(own.dof(p), 1) << i;
+      const auto e = m.edge(EdgeId(o.id));
+      EXPECT_EQ(y, closest_point_on_segment(far, m.point(e[0]), m.point(e[1]))) << i;
+    } else {
+      ++centres;
+      EXPECT_EQ(own.dof(p), 2) << i;
+      const auto t = m.triangle(TriId(o.id));
+      EXPECT_EQ(y, closest_point_on_triangle(far, m.point(t[0]), m.point(t[1]), m.point(t[2]))) << i;
+      std::uint32_t wprim = BoundaryConstraints::kNone;
+      walk.project(p, far, &wprim);
+      walked_off += wprim != walk.current(p);
+    }
+    EXPECT_EQ(prim, o.dim == 0 ? BoundaryConstraints::kNone : own.current(p)) << i;
+  }
+  EXPECT_GT(vertices, 0u);
+  EXPECT_GT(midpoints, 0u);
+  EXPECT_GT(centres, 0u);
+  EXPECT_GT(walked_off, 0u) << "the paper's walk should leave the start triangle for a far target";
 }
 
 // A flat model face is not multiplied: on a Kuhn lattice every boundary vertex
