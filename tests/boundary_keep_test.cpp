@@ -182,25 +182,32 @@ TEST(BoundaryKeep, VolumeIdentityIsExactOnADyadicTwoMaterialBox) {
   for (const auto& [tag, q] : pv) EXPECT_TRUE(dv3.at(tag) == q) << "material " << tag << " (caps)";
 }
 
-// Random boxes (axis-plane boundary: exact), with fractures (exact: their
-// faces cancel), two materials with a jagged interface and notched boxes
-// (centres rounded off the jagged triangles' planes: within 1e-12): closed
-// cells, nothing missing, the identity.
+// Random boxes (axis-plane boundary: exact), with fractures, crossing sheets,
+// networks and fins (exact: sheet faces cancel), lattice points (exact), two
+// materials with a jagged interface, notched boxes and three materials
+// touching along a line (centres rounded off the jagged triangles' planes:
+// within 1e-12): closed cells, nothing missing, the identity.
 TEST(BoundaryKeep, RawDualOnRandomMeshes) {
-  for (std::uint64_t seed = 1; seed <= 25; ++seed) {
+  for (std::uint64_t seed = 1; seed <= 15; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     RandomMeshParams p;
     p.seed = seed;
     p.num_points = 20 + int(seed % 30);
-    for (int family = 0; family < 4; ++family) {
+    for (int family = 0; family < 9; ++family) {
       RandomMeshParams q = p;
       q.regions = family == 1 ? 2 : 1;
       q.fracture = family == 2;
       q.notch = family == 3;
+      q.crossing_sheet = family == 4;  // two sheets crossing along a line
+      q.fracture |= family == 4;
+      q.network = family == 5;         // three sheets meeting at a point
+      q.fins = family == 6;            // sheets attached to the wall, ending inside
+      q.touching = family == 7;        // three materials and the outside along a line: multi-chain edges
+      q.lattice_points = family == 8;  // vertices on the box's faces and edges, cospherical tets
       const ClassifiedTetMesh m = classify(random_classified_mesh(q));
       const PolyMesh pm = build_dual(m, keep_dual());
       expect_sound(pm, m);
-      if (family == 1 || family == 3) {  // the interface and the notch are jagged: centres rounded off their planes
+      if (family == 1 || family == 3 || family == 7) {  // jagged interfaces and walls: centres rounded off their planes
         EXPECT_LE(worst_relative_volume_error(pm, m), 1e-12) << "family " << family;
       } else {
         const auto dv = exact_dual_volumes(pm), pv = exact_primal_volumes(m);
