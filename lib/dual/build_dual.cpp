@@ -110,7 +110,7 @@ bool vertex_has_point(const ClassifiedTetMesh& m, const CutTopology& ct, bool ke
 // Every point records the primal entity it comes from (point_origin).
 // Keep mode (BoundaryMode::Keep): model-face triangles get
 // triangle_inner_point(), never merged (tri_well_centred off), and every edge
-// and vertex on a model entity gets a point (keeps_point below).
+// and vertex on a model entity gets a point (edge_has_point, vertex_has_point).
 DualPoints make_points(const ClassifiedTetMesh& m, const CutTopology& ct, bool keep, PolyMesh& pm, DualStats& st) {
   DualPoints d;
   const std::size_t nt = m.num_tets();

@@ -23,7 +23,8 @@
 // triangulation (proofs/dual_invariants.md L5). By the point's PointOrigin:
 // a model-face triangle's centre moves in that triangle only, an edge's
 // midpoint on that edge only (a model edge's or a model face's), a primal
-// vertex's point is fixed. project() is then the closest point of that one
+// vertex's point is fixed, and so is a point without a PointOrigin (a dual
+// read from a file). project() is then the closest point of that one
 // primitive (no walk).
 #pragma once
 #include <array>
