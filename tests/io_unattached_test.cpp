@@ -101,9 +101,6 @@ TEST(IoUnattached, Msh4PhysicalNamesAndSecondOrderTet) {
   EXPECT_EQ(classify(s).num_vertices(), 4u);
 }
 
-}  // namespace
-}  // namespace polydual
-
 // Gmsh declares an OpenCASCADE sphere's poles as degenerate curves with no
 // element: nothing is dropped, so the warning names the empty entities only
 // (not "ignored 0 lower-dimensional elements").
@@ -116,3 +113,7 @@ TEST(IoUnattached, DeclaredEntitiesWithNoElementAreNamedAsSuch) {
   EXPECT_NE(s.warnings[0].find("2 curves, 0 surfaces (declared by the file with no element)"), std::string::npos)
       << s.warnings[0];
 }
+
+}  // namespace
+}  // namespace polydual
+
