@@ -19,7 +19,7 @@
 //  - Stencil: the optimisers' and quality metrics' flat topology
 //    (build_stencil), ms per build;
 //  - Untangle: optimize(Untangle) on the raw dual with its verdicts known, as
-//    `convert --optimize untangle` runs it, against issue 14's budget
+//    `convert --optimize untangle` runs it, against its budget
 //    (classify + the free-edge cuts + dual + one star test of the same mesh,
 //    timed in the same iterations): ms of each (fastest iteration) and their ratio (<= 1 meets it).
 #include <benchmark/benchmark.h>

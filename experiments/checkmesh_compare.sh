@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# checkMesh comparison (issue 13 part 4): on each domain at ~TETS tets, runs
+# checkMesh comparison: on each domain at ~TETS tets, runs
 # checkMesh -allTopology -allGeometry on polydual's OpenFOAM case (default
 # optimiser), on OpenFOAM's polyDualMesh and on polyDualMesh -concaveMultiCells
 # of the same Gmsh mesh, keeps the logs in OUT/ and writes the table

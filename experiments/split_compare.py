@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Records and tabulates the split (issue 13): every domain with and without
+"""Records and tabulates the split: every domain with and without
 splitting, with the default optimiser and without it, and draws the split
 cells.
 

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Records and tabulates polydual's own tet pre-optimisation (`convert
---optimize-tets`, issue 15 part 1) and the local against the global optimiser
-(issue 15 part 3), per domain and size.
+--optimize-tets`) and the local against the global optimiser,
+per domain and size.
 
     /usr/bin/python3 experiments/tetopt_compare.py [--polydual build/polydual]
         [--out results_tetopt] [--sizes 20000,100000] [--domains cube,...]
@@ -40,7 +40,7 @@ VARIANTS = {
     # ... or N rounds of moves then flips (--tet-flip-rounds N).
     "tetopt_r2_none": ["--optimize-tets", "--tet-flip-rounds", "2", "--optimize", "none"],
     "tetopt_r3_none": ["--optimize-tets", "--tet-flip-rounds", "3", "--optimize", "none"],
-    # The face-flatness term (issue 15 part 2), local scheme.
+    # The face-flatness term, local scheme.
     "planarity_1": ["--optimize", "local", "--planarity", "1"],
     "planarity_10": ["--optimize", "local", "--planarity", "10"],
     "planarity_100": ["--optimize", "local", "--planarity", "100"],

@@ -237,7 +237,7 @@ TEST(CliOptions, ThreadsDoNotChangeOutputs) {
   EXPECT_EQ(slurp(d / "t1.vtu"), slurp(d / "t3.vtu"));
 }
 
-// Issue 14: `--threads N` and `--quiet` on every command; the outputs do not
+// `--threads N` and `--quiet` on every command; the outputs do not
 // depend on the thread count, and --quiet leaves stderr empty.
 TEST(CliOptions, EveryCommandTakesThreadsAndQuiet) {
   const fs::path d = scratch_root();

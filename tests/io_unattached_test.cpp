@@ -101,5 +101,19 @@ TEST(IoUnattached, Msh4PhysicalNamesAndSecondOrderTet) {
   EXPECT_EQ(classify(s).num_vertices(), 4u);
 }
 
+// Gmsh declares an OpenCASCADE sphere's poles as degenerate curves with no
+// element: nothing is dropped, so the warning names the empty entities only
+// (not "ignored 0 lower-dimensional elements").
+TEST(IoUnattached, DeclaredEntitiesWithNoElementAreNamedAsSuch) {
+  const TetSoup s = read_msh_file(std::string(POLYDUAL_TEST_DATA) + "/gmsh/sphere_coarse.msh");
+  EXPECT_EQ(s.ignored.elements, 0u);
+  EXPECT_EQ(s.ignored.curves, 2u);
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_EQ(s.warnings[0].find("ignored"), std::string::npos) << s.warnings[0];
+  EXPECT_NE(s.warnings[0].find("2 curves, 0 surfaces (declared by the file with no element)"), std::string::npos)
+      << s.warnings[0];
+}
+
 }  // namespace
 }  // namespace polydual
+

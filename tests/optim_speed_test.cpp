@@ -1,4 +1,4 @@
-// Tests of the fast paths of lib/optim (issue 14): the lagged local objective
+// Tests of the fast paths of lib/optim: the lagged local objective
 // (centres held during a visit) and Method::Untangle.
 #include <gtest/gtest.h>
 

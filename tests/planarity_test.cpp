@@ -1,5 +1,4 @@
-// The face-flatness term of the local optimiser (optim/planarity.h, issue 15
-// part 2): its value is OpenFOAM's flatness deficit of the faces around the
+// The face-flatness term of the local optimiser (optim/planarity.h): its value is OpenFOAM's flatness deficit of the faces around the
 // point (quality/flatness.h), and a positive weight makes the faces flatter
 // without giving up the exact validity guarantee.
 #include <gtest/gtest.h>

@@ -115,7 +115,7 @@ RandomMeshParams random_family(int i) {
   return p;
 }
 
-// Issue 13's property: on >= 1000 random classified meshes (every family
+// The split's property: on >= 1000 random classified meshes (every family
 // above; POLYDUAL_SPLIT_MESHES overrides the count) the split loop alone,
 // without the optimiser, ends with every cell valid by the exact star test,
 // and the dual stays a valid one: closed cells, no face error, no slit, every

@@ -152,12 +152,18 @@ void drop_unattached(TetSoup& soup, const ElementOrigins& origins) {
   soup.ignored.elements += add.elements;
   restrict_groups(soup);
   if (!add.any()) return;
-  std::string w = soup.source + ": ignored " + count_of(dropped, "lower-dimensional element", "lower-dimensional elements") +
-                  " not attached to the tets (" + std::to_string(n.unused_vertex) + " with a vertex no tet uses, " +
-                  std::to_string(n.degenerate) + " degenerate with a repeated vertex)";
+  // Nothing dropped: the entities were declared with no element at all
+  // (Gmsh declares a sphere's poles as degenerate curves with none).
+  std::string w = soup.source + ": ";
+  if (dropped > 0)
+    w += "ignored " + count_of(dropped, "lower-dimensional element", "lower-dimensional elements") +
+         " not attached to the tets (" + std::to_string(n.unused_vertex) + " with a vertex no tet uses, " +
+         std::to_string(n.degenerate) + " degenerate with a repeated vertex)" +
+         (add.points + add.curves + add.surfaces > 0 ? "; " : "");
   if (add.points + add.curves + add.surfaces > 0)
-    w += "; model entities with no element on the tets: " + count_of(add.points, "point", "points") + ", " +
-         count_of(add.curves, "curve", "curves") + ", " + count_of(add.surfaces, "surface", "surfaces");
+    w += "model entities with no element on the tets: " + count_of(add.points, "point", "points") + ", " +
+         count_of(add.curves, "curve", "curves") + ", " + count_of(add.surfaces, "surface", "surfaces") +
+         (dropped == 0 ? " (declared by the file with no element)" : "");
   soup.warnings.push_back(std::move(w));
 }
 

@@ -1,4 +1,4 @@
-// The lagged local objective of one point p (issue 14): the corners of p's cells
+// The lagged local objective of one point p: the corners of p's cells
 // in which p is a corner vertex or an edge end, with the region centres R and
 // face centres F held at their values when the visit starts. Moving p then
 // changes only these corners (4 per face of p under Q1, 3 under Q2, against

@@ -1,5 +1,5 @@
-// The face-flatness term of the local objective (the paper's future work,
-// issue 15: `--planarity W`, OptimParams::planarity). For a point p it sums,
+// The face-flatness term of the local objective (the paper's future work:
+// `--planarity W`, OptimParams::planarity). For a point p it sums,
 // over the loops of p's cells that contain p (an interior face twice, once per
 // cell, a boundary face once), n_j * (1 - flatness_j): flatness_j is OpenFOAM's
 // face flatness (projected over actual area of the fan around its

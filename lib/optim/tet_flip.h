@@ -1,4 +1,4 @@
-// Delaunay flips of a classified tet mesh (issue 15; proofs/tet_optimize.md).
+// Delaunay flips of a classified tet mesh (proofs/tet_optimize.md).
 //
 // Why: the tet optimiser (optim/tet_optimize.h) moves vertices and keeps the
 // topology, so a Delaunay input loses the Delaunay property on many faces;

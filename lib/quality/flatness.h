@@ -1,4 +1,4 @@
-// Flatness of the dual's faces (issue 15 part 2, measure only): how far a
+// Flatness of the dual's faces (measure only): how far a
 // polygon face is from planar, as OpenFOAM's checkMesh measures it and as a
 // distance to a best-fit plane.
 //

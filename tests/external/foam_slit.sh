@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Slow external check (issue 13 part 4): with --no-split, the slit faces of the fracture domain's
+# Slow external check: with --no-split, the slit faces of the fracture domain's
 # dual (owner == neighbour, at the fracture tip) reach the OpenFOAM case as
 # baffles, two boundary faces of the slit cell in the patch face_<fracture tag>,
 # and checkMesh accepts the topology (closed cells, one baffle per slit face).

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Slow external check (issue 13): models nobody here meshed, written by the
+# Slow external check: models nobody here meshed, written by the
 # gmsh command itself from OpenCASCADE booleans (tests/data/geo): a block with
 # three crossing fractures and a construction point, a cylinder with two fins
 # attached to its wall, a box with two spherical holes and an inclusion. Each
