@@ -4,9 +4,10 @@
 // patches: every boundary triangle carries the same pair of subdomains, so a
 // reader must find the model's edges itself).
 //
-// The surface is read from IN (STL, OFF, OBJ or PLY; an STL that Gmsh writes
-// from an OpenCASCADE model is welded into one polyhedron by CGAL's polygon
-// soup repair). It must be closed and bound one volume.
+// The surface is read from IN (STL, OFF, OBJ or PLY) as a polygon soup,
+// repaired, oriented consistently (Gmsh's STL keeps each OpenCASCADE face's
+// own orientation, so neighbouring faces may disagree) and welded into one
+// polyhedron oriented to bound its volume. It must be closed.
 //
 // Usage: polyhedral_features_medit IN OUT.mesh [key=value ...] with keys
 // (defaults) angle (60: detect_features' dihedral angle in degrees),
@@ -20,7 +21,11 @@
 #include <CGAL/Mesh_criteria_3.h>
 #include <CGAL/Mesh_polyhedron_3.h>
 #include <CGAL/Mesh_triangulation_3.h>
-#include <CGAL/Polygon_mesh_processing/IO/polygon_mesh_io.h>
+#include <CGAL/IO/polygon_soup_io.h>
+#include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
+#include <CGAL/Polygon_mesh_processing/orientation.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
 #include <CGAL/Polyhedral_mesh_domain_with_features_3.h>
 #include <CGAL/boost/graph/helpers.h>
 #include <CGAL/make_mesh_3.h>
@@ -30,6 +35,7 @@
 #include <iostream>
 #include <map>
 #include <string>
+#include <vector>
 
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Polyhedron = CGAL::Mesh_polyhedron_3<K>::type;
@@ -78,15 +84,25 @@ Args parse(int argc, char** argv) {
 
 // The closed surface of IN, or exit 1 naming the file and what is wrong.
 Polyhedron read_surface(const std::string& path) {
-  Polyhedron p;
-  if (!CGAL::IO::read_polygon_mesh(path, p) || p.empty()) {
-    std::cerr << path << ": cannot read a polygon mesh from this file\n";
+  namespace PMP = CGAL::Polygon_mesh_processing;
+  std::vector<K::Point_3> points;
+  std::vector<std::vector<std::size_t>> polygons;
+  if (!CGAL::IO::read_polygon_soup(path, points, polygons) || polygons.empty()) {
+    std::cerr << path << ": cannot read polygons from this file\n";
     std::exit(1);
   }
+  PMP::repair_polygon_soup(points, polygons);
+  if (!PMP::orient_polygon_soup(points, polygons)) {
+    std::cerr << path << ": the surface is not an orientable manifold (points were duplicated)\n";
+    std::exit(1);
+  }
+  Polyhedron p;
+  PMP::polygon_soup_to_polygon_mesh(points, polygons, p);
   if (!CGAL::is_triangle_mesh(p) || !CGAL::is_closed(p)) {
     std::cerr << path << ": the surface is not a closed triangle mesh\n";
     std::exit(1);
   }
+  PMP::orient_to_bound_a_volume(p);
   return p;
 }
 
