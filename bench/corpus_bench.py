@@ -8,8 +8,8 @@ The corpus is made in WORK from Debian's tools (nothing is downloaded):
   - the demo's built-in domains (`polydual generate`);
   - TetGen (when the tetgen command is installed) on the PLCs of
     tests/data/tetgen, with its quality bound (-q) and without it (slivers).
-With --corpus tests (or all) the meshes of the tests' corpus are taken too
-(tests/corpus/corpus.py: Gmsh, TetGen, CGAL Mesh_3 and Netgen meshes of the
+With --corpus tests the meshes of the tests' corpus are taken instead, with
+--corpus all both (tests/corpus/corpus.py, the one list of that corpus: Gmsh, TetGen, CGAL Mesh_3 and Netgen meshes of the
 models there; the Mesh_3 generators from build/tests/meshgen unless given).
 Each mesh is converted once, `--threads 1 --json`; the table gives, per mesh,
 its tets, cells, and seconds per 1000 tets of each stage of the summary's
@@ -95,7 +95,7 @@ def tests_corpus_meshes(work, generators):
     for name in corpus.names():
         try:
             out.append((name, corpus.make(name, os.path.join(work, "tests"), generators)))
-        except corpus.Skip as e:
+        except (corpus.Skip, corpus.MakeError) as e:
             print(f"corpus: {name} skipped: {e}", file=sys.stderr)
     return out
 

@@ -159,6 +159,18 @@ def written_targets(spec, rows):
     return {**spec, "meshes": meshes}
 
 
+def dump_targets(spec, path):
+    """Writes SPEC with one line per mesh (readable diffs when it is tightened)."""
+    lines = ["{"] + [f" {json.dumps(k)}: {json.dumps(v)}," for k, v in spec.items() if k != "meshes"]
+    lines.append(' "meshes": {')
+    items = list(spec["meshes"].items())
+    lines += [f"  {json.dumps(k)}: {json.dumps(v)}" + ("," if i + 1 < len(items) else "")
+              for i, (k, v) in enumerate(items)]
+    lines += [" }", "}"]
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
+
+
 def print_row(name, r):
     print(f"corpus: {name:22s} {r['tets']:6d} tets {r['uncut_cells']:6d} -> {r['cells']:6d} cells "
           f"(+{r['split_added_pct']:.1f} %), max k/3 {r['max_kappa3']:.4g}, mean {r['mean_kappa3']:.3f}, "
@@ -208,8 +220,7 @@ def main():
     json.dump({"targets": spec["targets"], "meshes": list(rows.values()), "skipped": skipped},
               open(os.path.join(a.work, "corpus_table.json"), "w"), indent=1)
     if a.write_targets:
-        json.dump(written_targets(spec, rows), open(a.targets, "w"), indent=1)
-        open(a.targets, "a").write("\n")
+        dump_targets(written_targets(spec, rows), a.targets)
     for n in notes:
         print(f"corpus: NOTE {n}")
     for f in failures:
