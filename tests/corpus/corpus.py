@@ -69,6 +69,16 @@ def names():
     return [n for n, _ in MESHES]
 
 
+def producer_versions():
+    """Debian versions of the producers' packages ("missing" when not installed)."""
+    out = {}
+    for pkg in ("gmsh", "tetgen", "libcgal-dev", "python3-netgen"):
+        res = subprocess.run(["dpkg-query", "-W", "-f", "${Version}", pkg], stdout=subprocess.PIPE,
+                             stderr=subprocess.DEVNULL, text=True)
+        out[pkg] = res.stdout.strip() if res.returncode == 0 and res.stdout.strip() else "missing"
+    return out
+
+
 def _run(cmd, cwd, log):
     with open(log, "w") as f:
         res = subprocess.run(cmd, cwd=cwd, stdout=f, stderr=subprocess.STDOUT)

@@ -3,8 +3,9 @@
 bench/README.md): per mesh its tets, the uncut and final cells, the targets of
 issue 38 (max kappa/3, cells the split added, worst per-material volume
 error, CPU seconds per 1000 tets of the --threads 1 run) with the ones
-missed marked, and the summary's wall seconds; then the meshes
-that were skipped.
+missed marked, and the summary's wall seconds; then the producers' versions,
+the meshes that were skipped, and the run's failures and notes (a target met
+or improved: passing ctest runs do not show them).
 
   corpus_table.py WORK/corpus_table.json
 """
@@ -36,8 +37,13 @@ def main(argv):
     missed = {k: sum(1 for r in t["meshes"] if not r[k] <= b[k]) for k in b}
     print(f"\n{len(t['meshes'])} meshes; bold: target missed (" +
           ", ".join(f"{k} {n}" for k, n in missed.items()) + ")")
+    if t.get("producers"):
+        print("producers (Debian packages): " + ", ".join(f"{k} {v}" for k, v in t["producers"].items()))
     if t.get("skipped"):
         print(f"skipped (tool missing): {', '.join(t['skipped'])}")
+    for key in ("failures", "notes"):
+        for line in t.get(key, []):
+            print(f"- {key[:-1]}: {line}")
     return 0
 
 

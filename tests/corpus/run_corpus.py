@@ -217,7 +217,8 @@ def main():
         f, n = target_verdicts(name, row, spec)
         failures += [f"{name}: {x}" for x in f]
         notes += n
-    json.dump({"targets": spec["targets"], "meshes": list(rows.values()), "skipped": skipped},
+    json.dump({"targets": spec["targets"], "producers": corpus.producer_versions(),
+               "meshes": list(rows.values()), "skipped": skipped, "notes": notes, "failures": failures},
               open(os.path.join(a.work, "corpus_table.json"), "w"), indent=1)
     if a.write_targets:
         dump_targets(written_targets(spec, rows), a.targets)
