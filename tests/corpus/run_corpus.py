@@ -23,6 +23,7 @@ every mesh was skipped, 1 when any check failed.
   run_corpus.py --bin build/polydual --work DIR [--labelled_image_medit BIN]
                 [--polyhedral_features_medit BIN] [--only NAME ...]
                 [--targets FILE] [--write-targets]
+  run_corpus.py --self-test       (the target verdicts on made-up rows)
 """
 import argparse
 import filecmp
@@ -145,8 +146,9 @@ def target_verdicts(name, row, spec):
 
 
 def written_targets(spec, rows):
-    """targets.json with today's values of every missed target."""
-    meshes = {}
+    """targets.json with today's values of every missed target (meshes not
+    converted in this run keep their entries)."""
+    meshes = dict(spec["meshes"])
     for name, row in rows.items():
         missed = {}
         for metric, bound in spec["targets"].items():
@@ -177,10 +179,38 @@ def print_row(name, r):
           f"vol err {r['volume_error_pct']:.3g} %, {r['seconds_per_ktets']:.3f} s/1000 tets", flush=True)
 
 
+def self_test():
+    """The verdicts on made-up rows: 0 when each comes out as it must."""
+    spec = {"targets": {"max_kappa3": 10, "seconds_per_ktets": 2.0},
+            "slack": {"max_kappa3": 0.05, "seconds_per_ktets": 2.0},
+            "meshes": {"met": {}, "missed": {"max_kappa3": 100.0}}}
+    def row(k, t=5000, tets=5000):
+        return {"max_kappa3": k, "seconds_per_ktets": t, "tets": tets}
+    cases = [  # (mesh, row, failures expected, note expected)
+        ("met", row(9.9, 1.0), 0, False), ("met", row(10.5, 1.0), 1, False),
+        ("met", row(9.0, 2.5), 1, False), ("met", row(9.0, 2.5, tets=999), 0, False),
+        ("met", row(float("nan"), 1.0), 1, False), ("missed", row(104.0, 1.0), 0, False),
+        ("missed", row(106.0, 1.0), 1, False), ("missed", row(50.0, 1.0), 0, True),
+        ("missed", row(8.0, 1.0), 0, True), ("unlisted", row(1e9, 1e9), 0, True)]
+    bad = 0
+    for mesh, r, nfail, note in cases:
+        fails, notes = target_verdicts(mesh, r, spec)
+        if len(fails) != nfail or bool(notes) != note:
+            print(f"corpus self-test: {mesh} {r}: failures {fails}, notes {notes}")
+            bad += 1
+    kept = written_targets(spec, {"met": row(12.0, 1.0)})["meshes"]
+    if kept != {"met": {"max_kappa3": 12.0}, "missed": {"max_kappa3": 100.0}}:
+        print(f"corpus self-test: written targets {kept}")
+        bad += 1
+    print(f"corpus self-test: {len(cases) + 1 - bad} passed, {bad} failed")
+    return 1 if bad else 0
+
+
 def parse_args():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--bin", required=True)
-    ap.add_argument("--work", required=True)
+    ap.add_argument("--self-test", action="store_true", help="check the target verdicts on made-up rows")
+    ap.add_argument("--bin")
+    ap.add_argument("--work")
     ap.add_argument("--labelled_image_medit")
     ap.add_argument("--polyhedral_features_medit")
     ap.add_argument("--only", nargs="*", help="these meshes only")
@@ -192,6 +222,11 @@ def parse_args():
 
 def main():
     a = parse_args()
+    if a.self_test:
+        return self_test()
+    if not a.bin or not a.work:
+        print("run_corpus.py: --bin and --work are needed", file=sys.stderr)
+        return 2
     tools = {k: getattr(a, k) for k in ("labelled_image_medit", "polyhedral_features_medit") if getattr(a, k)}
     spec = json.load(open(a.targets))
     os.makedirs(a.work, exist_ok=True)
