@@ -176,7 +176,7 @@ def dump_targets(spec, path):
 def print_row(name, r):
     print(f"corpus: {name:22s} {r['tets']:6d} tets {r['uncut_cells']:6d} -> {r['cells']:6d} cells "
           f"(+{r['split_added_pct']:.1f} %), max k/3 {r['max_kappa3']:.4g}, mean {r['mean_kappa3']:.3f}, "
-          f"vol err {r['volume_error_pct']:.3g} %, {r['seconds_per_ktets']:.3f} s/1000 tets", flush=True)
+          f"vol err {r['volume_error_pct']:.3g} %, {r['seconds_per_ktets']:.3f} CPU s/1000 tets", flush=True)
 
 
 def self_test():
