@@ -126,6 +126,7 @@ def _make_cgal(name, r, work, tools):
     gen = tools.get(r["tool"])
     if not gen or not os.path.exists(gen):
         raise Skip(f"{r['tool']} was not built (CGAL's Mesh_3 not found, or not passed as --{r['tool']})")
+    gen = os.path.abspath(gen)  # it runs in WORK
     out = os.path.join(work, name + ".mesh")
     surface = [_stl(r["model"], work)] if "model" in r else []
     _run([gen, *surface, out, *r["args"]], work, out + ".log")

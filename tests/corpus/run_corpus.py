@@ -228,6 +228,7 @@ def main():
         print("run_corpus.py: --bin and --work are needed", file=sys.stderr)
         return 2
     tools = {k: getattr(a, k) for k in ("labelled_image_medit", "polyhedral_features_medit") if getattr(a, k)}
+    a.bin = os.path.abspath(a.bin) if os.sep in a.bin else a.bin  # a bare name is looked up on PATH
     spec = json.load(open(a.targets))
     os.makedirs(a.work, exist_ok=True)
     rows, failures, notes, skipped = {}, [], [], []
