@@ -8,6 +8,9 @@ The corpus is made in WORK from Debian's tools (nothing is downloaded):
   - the demo's built-in domains (`polydual generate`);
   - TetGen (when the tetgen command is installed) on the PLCs of
     tests/data/tetgen, with its quality bound (-q) and without it (slivers).
+With --corpus tests the meshes of the tests' corpus are taken instead, with
+--corpus all both (tests/corpus/corpus.py, the one list of that corpus: Gmsh, TetGen, CGAL Mesh_3 and Netgen meshes of the
+models there; the Mesh_3 generators from build/tests/meshgen unless given).
 Each mesh is converted once, `--threads 1 --json`; the table gives, per mesh,
 its tets, cells, and seconds per 1000 tets of each stage of the summary's
 `seconds.stages`, then per stage the maximum over the corpus and the mesh that
@@ -15,6 +18,7 @@ reached it. A stage whose time grows with anything but the mesh shows as a
 row far above the others.
 
   bench/corpus_bench.py [--bin build/polydual] [--work bench-data/corpus] [--quick]
+                        [--corpus bench|tests|all]
 """
 import argparse
 import json
@@ -83,6 +87,19 @@ def tetgen_meshes(work):
     return out
 
 
+def tests_corpus_meshes(work, generators):
+    """(name, path) of the tests' corpus (tests/corpus/corpus.py), one list for both."""
+    sys.path.insert(0, os.path.join(ROOT, "tests", "corpus"))
+    import corpus
+    out = []
+    for name in corpus.names():
+        try:
+            out.append((name, corpus.make(name, os.path.join(work, "tests"), generators)))
+        except (corpus.Skip, corpus.MakeError) as e:
+            print(f"corpus: {name} skipped: {e}", file=sys.stderr)
+    return out
+
+
 def convert(binary, name, path, work):
     res = subprocess.run([binary, "convert", path, "-o", os.path.join(work, name + ".vtu"), "--force", "--json",
                           "--quiet", "--threads", "1"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
@@ -96,9 +113,19 @@ def main():
     ap.add_argument("--bin", default=os.path.join(ROOT, "build", "polydual"))
     ap.add_argument("--work", default=os.path.join(ROOT, "bench-data", "corpus"))
     ap.add_argument("--quick", action="store_true", help="one size per model (about a minute)")
+    ap.add_argument("--corpus", choices=["bench", "tests", "all"], default="bench",
+                    help="this script's meshes, the tests' corpus (tests/corpus), or both")
+    gen_dir = os.path.join(ROOT, "build", "tests", "meshgen")
+    for gen in ("labelled_image_medit", "polyhedral_features_medit"):
+        ap.add_argument("--" + gen, default=os.path.join(gen_dir, gen), help="the CGAL Mesh_3 generator's binary")
     a = ap.parse_args()
     os.makedirs(a.work, exist_ok=True)
-    corpus = gmsh_meshes(a.work, a.quick) + domain_meshes(a.work, a.bin, a.quick) + tetgen_meshes(a.work)
+    corpus = []
+    if a.corpus in ("bench", "all"):
+        corpus += gmsh_meshes(a.work, a.quick) + domain_meshes(a.work, a.bin, a.quick) + tetgen_meshes(a.work)
+    if a.corpus in ("tests", "all"):
+        gens = {g: getattr(a, g) for g in ("labelled_image_medit", "polyhedral_features_medit")}
+        corpus += tests_corpus_meshes(a.work, gens)
     rows, stages, failed = [], [], []
     for name, path in corpus:
         d, err = convert(a.bin, name, path, a.work)

@@ -8,7 +8,8 @@ PKGS=(build-essential cmake ccache pkg-config
       gmsh libgmsh-dev
       clang-14 libclang-rt-14-dev
       python3 python3-vtk9 python3-matplotlib python3-numpy python3-meshio xvfb xauth time
-      openfoam)
+      openfoam
+      tetgen python3-netgen)  # mesh producers of the tests' corpus (tests/corpus)
 missing=()
 for p in "${PKGS[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
