@@ -26,10 +26,10 @@ const CommandSpec kGenerate{
     {"--tets=10000", "-o", "--threads", "--quiet"}};
 
 const CommandSpec kInfo{
-    "info", "info FILE [--json] [--feature-angle DEG] [--threads N] [--quiet]",
+    "info", "info FILE [--json] [--feature-angle DEG] [--strong-angle DEG] [--threads N] [--quiet]",
     "Reads and classifies a tet mesh; prints its size and its geometric model.",
     1, 1,
-    {"--feature-angle", "--threads", "--json", "--quiet"}};
+    {"--feature-angle", "--strong-angle", "--threads", "--json", "--quiet"}};
 
 int cmd_generate(const Settings& s) {
   const Domain d = parse_domain(s.positional[0]);
@@ -82,9 +82,7 @@ int cmd_info(const Settings& s) {
   j.set("edges", m.num_edges());
   j.set("ignored", ignored_summary(soup.ignored));
   j.set("model", model);
-  Json params = Json::object();
-  params.set("feature_angle_deg", s.params.classify.feature_angle_deg);
-  j.set("params", params);
+  j.set("params", s.params.classify.to_json());
   j.set("seconds", seconds);
   if (s.json) print_json(j);
   else print_model(path, m, model);

@@ -1,0 +1,136 @@
+// Feature edges: sharp edges grouped into chains, chains judged as lines
+// (lib/classify/features.h). Double geometry throughout (angle thresholds).
+#include "classify/features.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "core/union_find.h"
+
+namespace polydual {
+
+double angle_deg(const Vec3& u, const Vec3& v) {
+  const double d = norm(u) * norm(v);
+  if (d == 0) return 0;
+  return std::acos(std::clamp(dot(u, v) / d, -1.0, 1.0)) * 180.0 / M_PI;
+}
+
+namespace {
+
+// Two sharp edges continue one feature line through their common vertex v:
+// the same two sides (each side's normal turns by at most the feature angle),
+// the bend of the same sign (both convex or both concave), and the line turns
+// by at most the strong angle (a sharper turn is a corner, which ends lines).
+bool continues(const BendEdge& in, const BendEdge& out, std::uint32_t v, const FeatureRule& rule) {
+  if (norm2(in.left) == 0 || norm2(out.left) == 0) return false;
+  const bool in_fwd = in.b == v, out_fwd = out.a == v;  // directed into v, then out of v
+  const Vec3 di = in_fwd ? in.dir : -1.0 * in.dir, dout = out_fwd ? out.dir : -1.0 * out.dir;
+  const Vec3 li = in_fwd ? in.left : in.right, ri = in_fwd ? in.right : in.left;
+  const Vec3 lo = out_fwd ? out.left : out.right, ro = out_fwd ? out.right : out.left;
+  if (angle_deg(li, lo) > rule.feature_deg || angle_deg(ri, ro) > rule.feature_deg) return false;
+  if ((dot(cross(li, ri), di) > 0) != (dot(cross(lo, ro), dout) > 0)) return false;
+  return angle_deg(di, dout) <= rule.strong_deg;
+}
+
+// The sharp edges at each vertex: (vertex, edge) pairs sorted by vertex.
+std::vector<std::pair<std::uint32_t, std::uint32_t>> sharp_incidences(const std::vector<BendEdge>& edges,
+                                                                      const std::vector<FeatureVerdict>& out) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> inc;
+  for (std::uint32_t i = 0; i < edges.size(); ++i) {
+    if (out[i] == FeatureVerdict::Smooth) continue;
+    inc.emplace_back(edges[i].a, i);
+    inc.emplace_back(edges[i].b, i);
+  }
+  std::sort(inc.begin(), inc.end());
+  return inc;
+}
+
+// Chains: sharp edges linked at vertices with exactly two sharp edges that
+// continue each other. linked[2 i + s] says whether edge i is linked at its
+// end s (0: a, 1: b).
+struct Chains {
+  UnionFind uf;
+  std::vector<char> linked;
+  explicit Chains(std::size_t n) : uf(n), linked(2 * n, 0) {}
+};
+
+Chains link_chains(const std::vector<BendEdge>& edges,
+                   const std::vector<std::pair<std::uint32_t, std::uint32_t>>& inc, const FeatureRule& rule) {
+  Chains ch(edges.size());
+  for (std::size_t k = 0; k < inc.size();) {
+    std::size_t n = 1;
+    while (k + n < inc.size() && inc[k + n].first == inc[k].first) ++n;
+    const std::uint32_t v = inc[k].first;
+    if (n == 2) {
+      const std::uint32_t i = inc[k].second, j = inc[k + 1].second;
+      if (continues(edges[i], edges[j], v, rule)) {
+        ch.uf.unite(i, j);
+        ch.linked[2 * i + (edges[i].b == v)] = 1;
+        ch.linked[2 * j + (edges[j].b == v)] = 1;
+      }
+    }
+    k += n;
+  }
+  return ch;
+}
+
+}  // namespace
+
+// Strong edges first; then chains kept by length or by a strong edge; then
+// short chains whose every free end touches a kept edge of another chain
+// (a feature line between two corners); the rest is noise.
+std::vector<FeatureVerdict> select_feature_edges(const std::vector<BendEdge>& edges, const FeatureRule& rule) {
+  const std::size_t n = edges.size();
+  std::vector<FeatureVerdict> out(n, FeatureVerdict::Smooth);
+  for (std::size_t i = 0; i < n; ++i)
+    if (edges[i].bend > rule.strong_deg) out[i] = FeatureVerdict::Strong;
+    else if (edges[i].bend > rule.feature_deg) out[i] = FeatureVerdict::Noise;
+  const auto inc = sharp_incidences(edges, out);
+  Chains ch = link_chains(edges, inc, rule);
+  std::vector<std::uint32_t> size(n, 0);
+  std::vector<char> strong(n, 0), kept(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (out[i] == FeatureVerdict::Smooth) continue;
+    const std::uint32_t r = ch.uf.find(i);
+    ++size[r];
+    strong[r] |= out[i] == FeatureVerdict::Strong;
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    if (out[i] != FeatureVerdict::Smooth) {
+      const std::uint32_t r = ch.uf.find(i);
+      kept[r] = size[r] >= rule.min_chain_edges || (strong[r] && size[r] >= 2);
+    }
+  // Per vertex: the first kept chain at it, and whether a second one is.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> kept_at;  // (vertex, chain root)
+  for (const auto& [v, i] : inc)
+    if (kept[ch.uf.find(i)]) kept_at.emplace_back(v, ch.uf.find(i));
+  auto other_kept_at = [&](std::uint32_t v, std::uint32_t root) {
+    auto it = std::lower_bound(kept_at.begin(), kept_at.end(), std::make_pair(v, std::uint32_t(0)));
+    for (; it != kept_at.end() && it->first == v; ++it)
+      if (it->second != root) return true;
+    auto s = std::lower_bound(inc.begin(), inc.end(), std::make_pair(v, std::uint32_t(0)));
+    std::size_t strong_here = 0;
+    for (; s != inc.end() && s->first == v; ++s) strong_here += out[s->second] == FeatureVerdict::Strong;
+    return strong_here >= 3;  // a corner where three strong edges meet
+  };
+  std::vector<char> joins(n, 1);  // per root of a short chain: every free end meets a kept chain
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t r = ch.uf.find(i);
+    if (out[i] == FeatureVerdict::Smooth || kept[r]) continue;
+    if (!ch.linked[2 * i] && !other_kept_at(edges[i].a, r)) joins[r] = 0;
+    if (!ch.linked[2 * i + 1] && !other_kept_at(edges[i].b, r)) joins[r] = 0;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (out[i] == FeatureVerdict::Smooth) continue;
+    const std::uint32_t r = ch.uf.find(i);
+    if (kept[r] || joins[r]) {
+      if (out[i] == FeatureVerdict::Noise) out[i] = FeatureVerdict::Chain;
+    } else {
+      out[i] = FeatureVerdict::Noise;
+    }
+  }
+  return out;
+}
+
+}  // namespace polydual
