@@ -101,7 +101,21 @@ std::vector<FeatureVerdict> select_feature_edges(const std::vector<BendEdge>& ed
       const std::uint32_t r = ch.uf.find(i);
       kept[r] = size[r] >= rule.min_chain_edges || (strong[r] && size[r] >= 2);
     }
-  // Per vertex: the first kept chain at it, and whether a second one is.
+  // Per vertex: the largest bend of a smooth edge at it (a corner's sectors are flat).
+  std::vector<std::pair<std::uint32_t, double>> smooth_bend;
+  for (const BendEdge& e : edges)
+    if (e.bend <= rule.feature_deg) {
+      smooth_bend.emplace_back(e.a, e.bend);
+      smooth_bend.emplace_back(e.b, e.bend);
+    }
+  std::sort(smooth_bend.begin(), smooth_bend.end());
+  auto flat_around = [&](std::uint32_t v) {
+    auto it = std::lower_bound(smooth_bend.begin(), smooth_bend.end(), std::make_pair(v, -1.0));
+    for (; it != smooth_bend.end() && it->first == v; ++it)
+      if (it->second > rule.feature_deg / 2) return false;
+    return true;
+  };
+  // Per vertex: the kept chains at it.
   std::vector<std::pair<std::uint32_t, std::uint32_t>> kept_at;  // (vertex, chain root)
   for (const auto& [v, i] : inc)
     if (kept[ch.uf.find(i)]) kept_at.emplace_back(v, ch.uf.find(i));
@@ -110,9 +124,13 @@ std::vector<FeatureVerdict> select_feature_edges(const std::vector<BendEdge>& ed
     for (; it != kept_at.end() && it->first == v; ++it)
       if (it->second != root) return true;
     auto s = std::lower_bound(inc.begin(), inc.end(), std::make_pair(v, std::uint32_t(0)));
-    std::size_t strong_here = 0;
-    for (; s != inc.end() && s->first == v; ++s) strong_here += out[s->second] == FeatureVerdict::Strong;
-    return strong_here >= 3;  // a corner where three strong edges meet
+    std::size_t sharp_here = 0, strong_here = 0;
+    for (; s != inc.end() && s->first == v; ++s) {
+      ++sharp_here;
+      strong_here += out[s->second] == FeatureVerdict::Strong;
+    }
+    // A corner: three sharp edges, two of them strong, between flat sectors.
+    return sharp_here >= 3 && strong_here >= 2 && flat_around(v);
   };
   std::vector<char> joins(n, 1);  // per root of a short chain: every free end meets a kept chain
   for (std::size_t i = 0; i < n; ++i) {
