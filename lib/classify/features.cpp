@@ -19,18 +19,24 @@ double angle_deg(const Vec3& u, const Vec3& v) {
 namespace {
 
 // Two sharp edges continue one feature line through their common vertex v:
-// the same two sides (each side's normal turns by at most the feature angle),
-// the bend of the same sign (both convex or both concave), and the line turns
-// by at most the strong angle (a sharper turn is a corner, which ends lines).
+// the line turns by at most the strong angle (a sharper turn is a corner,
+// which ends lines), the bend keeps its sign (both convex or both concave),
+// and the two sides stay the same sheets: one side's normal turns by at most
+// the feature angle, the other's by at most the feature angle plus the
+// line's turn (a rim of a coarse cylinder: the cap is flat, the side's
+// normal turns with the rim). A zigzag across a coarse curved surface swaps
+// or twists its sides and fails.
 bool continues(const BendEdge& in, const BendEdge& out, std::uint32_t v, const FeatureRule& rule) {
   if (norm2(in.left) == 0 || norm2(out.left) == 0) return false;
   const bool in_fwd = in.b == v, out_fwd = out.a == v;  // directed into v, then out of v
   const Vec3 di = in_fwd ? in.dir : -1.0 * in.dir, dout = out_fwd ? out.dir : -1.0 * out.dir;
   const Vec3 li = in_fwd ? in.left : in.right, ri = in_fwd ? in.right : in.left;
   const Vec3 lo = out_fwd ? out.left : out.right, ro = out_fwd ? out.right : out.left;
-  if (angle_deg(li, lo) > rule.feature_deg || angle_deg(ri, ro) > rule.feature_deg) return false;
+  const double turn = angle_deg(di, dout);
+  if (turn > rule.strong_deg) return false;
   if ((dot(cross(li, ri), di) > 0) != (dot(cross(lo, ro), dout) > 0)) return false;
-  return angle_deg(di, dout) <= rule.strong_deg;
+  const double left = angle_deg(li, lo), right = angle_deg(ri, ro);
+  return std::min(left, right) <= rule.feature_deg && std::max(left, right) <= rule.feature_deg + turn;
 }
 
 // The sharp edges at each vertex: (vertex, edge) pairs sorted by vertex.
