@@ -1,15 +1,17 @@
 // Classification (design §3). The model entities are found bottom-up from the
 // mesh: model-face triangles -> model faces (connected pieces, split by given
-// tags, region pairs and the feature angle, which also splits a given face
-// marker unless the file gave a full classification); primal edges where the
+// tags, region pairs and feature edges — sharp edges in a feature line, not the
+// facets of a coarse curved surface (classify/features.h) — which also split a
+// given face marker unless the file gave a full classification); primal edges where the
 // model-face triangles do not form one smooth manifold sheet -> model edges;
 // vertices where model edges end, branch or bend -> model vertices. A full
 // classification that lacks curves or points is completed the same way (fresh
 // tags, warnings); one that contradicts itself is refused (proofs/
 // classification.md L14). Every decision here is combinatorial except the
-// feature-angle tests, which are plain double geometry (an angle threshold is
-// a modelling choice, not a sign that must be exact). Tet orientation is
-// decided exactly (lib/predicates).
+// feature tests (bends, turns, side normals: proofs/classification.md FE1),
+// which are plain double geometry (an angle threshold is a modelling choice,
+// not a sign that must be exact). Tet orientation and the planarity of model
+// faces are decided exactly (lib/predicates).
 #include "classify/classify.h"
 
 #include <algorithm>
