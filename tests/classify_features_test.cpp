@@ -187,6 +187,28 @@ TEST(ClassifyFeatures, TetgenChamferedCubeKeepsEveryEdge) {
   EXPECT_EQ(counts(tetgen("chamfer_coarse.poly")), (Counts{10, 15, 7}));
 }
 
+// `info --json` and the convert summary's model record list per marker what
+// was split and why (coarse chamfered cube: 13 strong edges, the chamfer's
+// two 45-degree edges kept as single edges between corners).
+TEST(ClassifyFeatures, InfoAndConvertJsonReportPerMarker) {
+  if (!have("tetgen")) GTEST_SKIP() << "tetgen is not installed";
+  write("report.poly", kChamferPoly);
+  run("tetgen -p report.poly > report.log");
+  const std::string mesh = (scratch() / "report.1.node").string();
+  for (const std::string& cmd :
+       {"info " + mesh + " --json", "convert " + mesh + " -o " + (scratch() / "report.vtu").string() + " --json"}) {
+    const auto r = polydual::testing::run_polydual(cmd);
+    ASSERT_EQ(r.code, 0) << cmd << "\n" << r.out;
+    const std::string one = "\"marker\": 1,\n        \"facets\": 16,\n        \"model_faces\": 7,\n"
+                            "        \"model_edges\": 15,\n        \"corners\": 10,\n        \"sharp_edges\": 15,\n"
+                            "        \"feature_edges_strong\": 13,\n        \"feature_edges_chain\": 2,\n"
+                            "        \"noise_edges\": 0";
+    EXPECT_THAT(r.out, ::testing::HasSubstr(one)) << cmd;
+  }
+  const auto bad = polydual::testing::run_polydual("info " + mesh + " --strong-angle 0");
+  EXPECT_EQ(bad.code, 2) << bad.out;
+}
+
 TEST(ClassifyFeatures, OccBoxFromStlHasItsTwelveEdges) {
   if (!have("gmsh") || !have("tetgen")) GTEST_SKIP() << "gmsh or tetgen is not installed";
   const ClassifiedTetMesh m = occ_stl("box", "Box(1) = {0,0,0, 1,0.7,0.4};", 0.3);
