@@ -81,19 +81,10 @@ Chains link_chains(const std::vector<BendEdge>& edges,
   return ch;
 }
 
-}  // namespace
-
-// Strong edges first; then chains kept by length or by a strong edge; then
-// short chains whose every free end touches a kept edge of another chain
-// (a feature line between two corners); the rest is noise.
-std::vector<FeatureVerdict> select_feature_edges(const std::vector<BendEdge>& edges, const FeatureRule& rule) {
-  const std::size_t n = edges.size();
-  std::vector<FeatureVerdict> out(n, FeatureVerdict::Smooth);
-  for (std::size_t i = 0; i < n; ++i)
-    if (edges[i].bend > rule.strong_deg) out[i] = FeatureVerdict::Strong;
-    else if (edges[i].bend > rule.feature_deg) out[i] = FeatureVerdict::Noise;
-  const auto inc = sharp_incidences(edges, out);
-  Chains ch = link_chains(edges, inc, rule);
+// FE1(ii): per chain root, kept for its length, or for a strong edge in a
+// chain of two or more.
+std::vector<char> kept_by_length(const std::vector<FeatureVerdict>& out, Chains& ch, const FeatureRule& rule) {
+  const std::size_t n = out.size();
   std::vector<std::uint32_t> size(n, 0);
   std::vector<char> strong(n, 0), kept(n, 0);
   for (std::size_t i = 0; i < n; ++i) {
@@ -102,57 +93,86 @@ std::vector<FeatureVerdict> select_feature_edges(const std::vector<BendEdge>& ed
     ++size[r];
     strong[r] |= out[i] == FeatureVerdict::Strong;
   }
-  for (std::size_t i = 0; i < n; ++i)
-    if (out[i] != FeatureVerdict::Smooth) {
-      const std::uint32_t r = ch.uf.find(i);
-      kept[r] = size[r] >= rule.min_chain_edges || (strong[r] && size[r] >= 2);
-    }
-  // Per vertex: the largest bend of a smooth edge at it (a corner's sectors are flat).
-  std::vector<std::pair<std::uint32_t, double>> smooth_bend;
-  for (const BendEdge& e : edges)
-    if (e.bend <= rule.feature_deg) {
-      smooth_bend.emplace_back(e.a, e.bend);
-      smooth_bend.emplace_back(e.b, e.bend);
-    }
-  std::sort(smooth_bend.begin(), smooth_bend.end());
-  auto flat_around = [&](std::uint32_t v) {
-    auto it = std::lower_bound(smooth_bend.begin(), smooth_bend.end(), std::make_pair(v, -1.0));
-    for (; it != smooth_bend.end() && it->first == v; ++it)
-      if (it->second > rule.feature_deg / 2) return false;
-    return true;
-  };
-  // Per vertex: the kept chains at it.
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> kept_at;  // (vertex, chain root)
-  for (const auto& [v, i] : inc)
-    if (kept[ch.uf.find(i)]) kept_at.emplace_back(v, ch.uf.find(i));
-  auto other_kept_at = [&](std::uint32_t v, std::uint32_t root) {
-    auto it = std::lower_bound(kept_at.begin(), kept_at.end(), std::make_pair(v, std::uint32_t(0)));
-    for (; it != kept_at.end() && it->first == v; ++it)
+  for (std::size_t r = 0; r < n; ++r) kept[r] = size[r] >= rule.min_chain_edges || (strong[r] && size[r] >= 2);
+  return kept;
+}
+
+// The first entry of vertex v in a list sorted by vertex.
+template <class T>
+typename std::vector<std::pair<std::uint32_t, T>>::const_iterator first(
+    const std::vector<std::pair<std::uint32_t, T>>& list, std::uint32_t v) {
+  return std::lower_bound(list.begin(), list.end(), v, [](const auto& x, std::uint32_t y) { return x.first < y; });
+}
+
+// FE1(iii): where a short chain's free end may stop: at a chain kept by
+// length, or at a corner (three sharp edges, two of them strong, every smooth
+// edge there within half the feature angle: flat sectors).
+class Anchors {
+ public:
+  Anchors(const std::vector<BendEdge>& edges, const std::vector<FeatureVerdict>& out,
+          const std::vector<std::pair<std::uint32_t, std::uint32_t>>& inc, Chains& ch, const std::vector<char>& kept,
+          const FeatureRule& rule)
+      : out_(out), inc_(inc), half_feature_(rule.feature_deg / 2) {
+    for (const BendEdge& e : edges)
+      if (e.bend <= rule.feature_deg) {
+        smooth_bend_.emplace_back(e.a, e.bend);
+        smooth_bend_.emplace_back(e.b, e.bend);
+      }
+    std::sort(smooth_bend_.begin(), smooth_bend_.end());
+    for (const auto& [v, i] : inc)
+      if (kept[ch.uf.find(i)]) kept_at_.emplace_back(v, ch.uf.find(i));  // sorted by vertex, as inc
+  }
+
+  // v ends the chain `root` at a kept chain or a corner.
+  bool anchors(std::uint32_t v, std::uint32_t root) const {
+    for (auto it = first(kept_at_, v); it != kept_at_.end() && it->first == v; ++it)
       if (it->second != root) return true;
-    auto s = std::lower_bound(inc.begin(), inc.end(), std::make_pair(v, std::uint32_t(0)));
-    std::size_t sharp_here = 0, strong_here = 0;
-    for (; s != inc.end() && s->first == v; ++s) {
-      ++sharp_here;
-      strong_here += out[s->second] == FeatureVerdict::Strong;
+    std::size_t sharp = 0, strong = 0;
+    for (auto it = first(inc_, v); it != inc_.end() && it->first == v; ++it) {
+      ++sharp;
+      strong += out_[it->second] == FeatureVerdict::Strong;
     }
-    // A corner: three sharp edges, two of them strong, between flat sectors.
-    return sharp_here >= 3 && strong_here >= 2 && flat_around(v);
-  };
-  std::vector<char> joins(n, 1);  // per root of a short chain: every free end meets a kept chain
+    if (sharp < 3 || strong < 2) return false;
+    for (auto it = first(smooth_bend_, v); it != smooth_bend_.end() && it->first == v; ++it)
+      if (it->second > half_feature_) return false;
+    return true;
+  }
+
+ private:
+  const std::vector<FeatureVerdict>& out_;
+  const std::vector<std::pair<std::uint32_t, std::uint32_t>>& inc_;
+  double half_feature_;
+  std::vector<std::pair<std::uint32_t, double>> smooth_bend_;       // (vertex, bend), sorted
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> kept_at_;    // (vertex, kept chain root)
+};
+
+}  // namespace
+
+// FE1: sharp edges, linked into chains; chains kept by length or a strong
+// edge (ii), or by both free ends at kept chains or corners (iii); the rest
+// is noise.
+std::vector<FeatureVerdict> select_feature_edges(const std::vector<BendEdge>& edges, const FeatureRule& rule) {
+  const std::size_t n = edges.size();
+  std::vector<FeatureVerdict> out(n, FeatureVerdict::Smooth);
+  for (std::size_t i = 0; i < n; ++i)
+    if (edges[i].bend > rule.strong_deg) out[i] = FeatureVerdict::Strong;
+    else if (edges[i].bend > rule.feature_deg) out[i] = FeatureVerdict::Noise;
+  const auto inc = sharp_incidences(edges, out);
+  Chains ch = link_chains(edges, inc, rule);
+  const std::vector<char> kept = kept_by_length(out, ch, rule);
+  const Anchors anchors(edges, out, inc, ch, kept, rule);
+  std::vector<char> joins(n, 1);  // per root of a chain not kept by length: every free end anchored
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint32_t r = ch.uf.find(i);
     if (out[i] == FeatureVerdict::Smooth || kept[r]) continue;
-    if (!ch.linked[2 * i] && !other_kept_at(edges[i].a, r)) joins[r] = 0;
-    if (!ch.linked[2 * i + 1] && !other_kept_at(edges[i].b, r)) joins[r] = 0;
+    if (!ch.linked[2 * i] && !anchors.anchors(edges[i].a, r)) joins[r] = 0;
+    if (!ch.linked[2 * i + 1] && !anchors.anchors(edges[i].b, r)) joins[r] = 0;
   }
   for (std::size_t i = 0; i < n; ++i) {
     if (out[i] == FeatureVerdict::Smooth) continue;
     const std::uint32_t r = ch.uf.find(i);
-    if (kept[r] || joins[r]) {
-      if (out[i] == FeatureVerdict::Noise) out[i] = FeatureVerdict::Chain;
-    } else {
-      out[i] = FeatureVerdict::Noise;
-    }
+    if (!kept[r] && !joins[r]) out[i] = FeatureVerdict::Noise;
+    else if (out[i] == FeatureVerdict::Noise) out[i] = FeatureVerdict::Chain;
   }
   return out;
 }
