@@ -187,7 +187,7 @@ TEST(ClassifyFeatures, TetgenChamferedCubeKeepsEveryEdge) {
   EXPECT_EQ(counts(tetgen("chamfer_coarse.poly")), (Counts{10, 15, 7}));
 }
 
-// `info --json` and the convert summary's model record list per marker what
+// `info` (text and --json) and the convert summary's model record list per marker what
 // was split and why (coarse chamfered cube: 13 strong edges, the chamfer's
 // two 45-degree edges kept as single edges between corners).
 TEST(ClassifyFeatures, InfoAndConvertJsonReportPerMarker) {
@@ -205,6 +205,9 @@ TEST(ClassifyFeatures, InfoAndConvertJsonReportPerMarker) {
                             "        \"noise_edges\": 0";
     EXPECT_THAT(r.out, ::testing::HasSubstr(one)) << cmd;
   }
+  const auto text = polydual::testing::run_polydual("info " + mesh);
+  EXPECT_THAT(text.out, ::testing::HasSubstr("marker 1: 16 triangles -> 7 faces, 15 edges, 10 corners; 15 sharp "
+                                             "edges: 13 strong and 2 in feature lines kept, 0 dropped as noise"));
   const auto bad = polydual::testing::run_polydual("info " + mesh + " --strong-angle 0");
   EXPECT_EQ(bad.code, 2) << bad.out;
 }
