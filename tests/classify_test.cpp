@@ -162,9 +162,23 @@ TEST(Classify, ParamsValidateNamesFieldUnitAndRange) {
     p.feature_angle_deg = good;
     EXPECT_NO_THROW(p.validate()) << good;
   }
+  for (double bad : {0.0, 181.0}) {
+    ClassifyParams p;
+    p.strong_angle_deg = bad;
+    EXPECT_THROW(p.validate(), UsageError) << bad;
+  }
+  ClassifyParams zero_chain;
+  zero_chain.min_feature_chain_edges = 0;
+  try {
+    zero_chain.validate();
+    FAIL() << "min_feature_chain_edges = 0 accepted";
+  } catch (const UsageError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("min_feature_chain_edges"));
+  }
   ClassifyParams p;
   p.feature_angle_deg = 42.5;
-  EXPECT_EQ(p.to_json().dump(0), "{\"feature_angle_deg\":42.5}");
+  EXPECT_EQ(p.to_json().dump(0),
+            "{\"feature_angle_deg\":42.5,\"strong_angle_deg\":60,\"min_feature_chain_edges\":3}");
 }
 
 // The rule that names a model face from its regions (one place: lib/mesh).

@@ -1,15 +1,17 @@
 // Classification (design §3). The model entities are found bottom-up from the
 // mesh: model-face triangles -> model faces (connected pieces, split by given
-// tags, region pairs and the feature angle, which also splits a given face
-// marker unless the file gave a full classification); primal edges where the
+// tags, region pairs and feature edges — sharp edges in a feature line, not the
+// facets of a coarse curved surface (classify/features.h) — which also split a
+// given face marker unless the file gave a full classification); primal edges where the
 // model-face triangles do not form one smooth manifold sheet -> model edges;
 // vertices where model edges end, branch or bend -> model vertices. A full
 // classification that lacks curves or points is completed the same way (fresh
 // tags, warnings); one that contradicts itself is refused (proofs/
 // classification.md L14). Every decision here is combinatorial except the
-// feature-angle tests, which are plain double geometry (an angle threshold is
-// a modelling choice, not a sign that must be exact). Tet orientation is
-// decided exactly (lib/predicates).
+// feature tests (bends, turns, side normals: proofs/classification.md FE1),
+// which are plain double geometry (an angle threshold is a modelling choice,
+// not a sign that must be exact). Tet orientation and the planarity of model
+// faces are decided exactly (lib/predicates).
 #include "classify/classify.h"
 
 #include <algorithm>
@@ -25,6 +27,7 @@
 #include <span>
 #include <unordered_map>
 
+#include "classify/features.h"
 #include "classify/self_overlap.h"
 #include "classify/spatial_order.h"
 #include "core/union_find.h"
@@ -356,6 +359,7 @@ class ModelInference {
     build_model_topology();
     name_model_entities();
     report_completion();
+    report_markers();
   }
 
  private:
@@ -383,8 +387,13 @@ class ModelInference {
   void read_given_triangles();
   void find_model_face_triangles();
   void find_candidate_edges();
+  std::array<VertexId, 3> oriented_triangle(std::uint32_t r) const;
+  BendEdge bend_edge(std::size_t ci, std::uint32_t f1, std::uint32_t f2) const;
+  void judge_bends();
   void group_model_faces();
   void find_model_edges();
+  VertexId across(std::uint32_t ci, std::size_t v) const;
+  double turn_at(std::size_t v) const;
   bool is_model_vertex(std::size_t v) const;
   void find_model_vertices();
   void classify_edges();
@@ -392,6 +401,7 @@ class ModelInference {
   void build_model_topology();
   void name_model_entities();
   void report_completion();
+  void report_markers();
   // Records a fresh tag that classify() gave in a full classification (see
   // Added) at the place `where`, for report_completion().
   void note_added(int dim, std::int32_t given, std::int32_t tag, const std::string& where);
@@ -435,6 +445,8 @@ class ModelInference {
   std::vector<EdgeTri> et_;                  // (edge, rank) incidences sorted by edge
   std::vector<Cand> cand_;
   std::vector<char> is_me_;                  // per candidate: a model edge
+  static constexpr std::uint8_t kNotTested = 0xff;
+  std::vector<std::uint8_t> verdict_;        // per candidate: its FeatureVerdict, or kNotTested
   std::vector<std::uint32_t> vme_off_, vme_; // vertex -> model edges (CSR of candidates)
   std::vector<std::int32_t> corner_given_;   // per vertex: given model-vertex tag or kNoTag
   std::vector<char> is_mv_;                  // per vertex: a model vertex
@@ -521,21 +533,77 @@ void ModelInference::find_candidate_edges() {
   }
 }
 
+// The triangle of rank r, oriented so that its right-hand normal points out
+// of the first region of its key (for a fracture: out of its first tet), so
+// the triangles of one sheet are oriented alike.
+std::array<VertexId, 3> ModelInference::oriented_triangle(std::uint32_t r) const {
+  std::array<VertexId, 3> v = m_.triangle(TriId(mf_[r]));
+  if (m_.region(m_.triangle_tet(TriId(mf_[r]), 0)) != key_[r].r0) std::swap(v[1], v[2]);
+  return v;
+}
+
+// The bend at candidate ci (two model-face triangles of ranks f1, f2), with
+// the oriented normals on its left and right (classify/features.h).
+BendEdge ModelInference::bend_edge(std::size_t ci, std::uint32_t f1, std::uint32_t f2) const {
+  const auto ev = m_.edge(EdgeId(cand_[ci].e));
+  BendEdge b;
+  b.a = ev[0].idx;
+  b.b = ev[1].idx;
+  b.dir = m_.point(ev[1]) - m_.point(ev[0]);
+  b.bend = bend_angle(m_.point(ev[0]), m_.point(ev[1]), m_.point(third_vertex(m_, TriId(mf_[f1]), EdgeId(cand_[ci].e))),
+                      m_.point(third_vertex(m_, TriId(mf_[f2]), EdgeId(cand_[ci].e))));
+  auto runs_ab = [&](const std::array<VertexId, 3>& t) {
+    for (int k = 0; k < 3; ++k)
+      if (t[k] == ev[0] && t[(k + 1) % 3] == ev[1]) return true;
+    return false;
+  };
+  auto unit_normal = [&](const std::array<VertexId, 3>& t) {
+    const Vec3 n = cross(m_.point(t[1]) - m_.point(t[0]), m_.point(t[2]) - m_.point(t[0]));
+    const double len = norm(n);
+    return len > 0 ? n / len : Vec3{};
+  };
+  const auto t1 = oriented_triangle(f1), t2 = oriented_triangle(f2);
+  if (runs_ab(t1) != runs_ab(t2)) {  // one sheet, oriented alike: the edge runs both ways
+    b.left = unit_normal(runs_ab(t1) ? t1 : t2);
+    b.right = unit_normal(runs_ab(t1) ? t2 : t1);
+  }
+  return b;
+}
+
+// The feature verdict of every candidate inside one sheet (two model-face
+// triangles of one key) where the feature angle applies; kNotTested elsewhere.
+void ModelInference::judge_bends() {
+  std::vector<BendEdge> bends;
+  std::vector<std::uint32_t> which;
+  verdict_.assign(cand_.size(), kNotTested);
+  for (std::size_t ci = 0; ci < cand_.size(); ++ci) {
+    const Cand& c = cand_[ci];
+    if (c.t1 - c.t0 != 2) continue;
+    const std::uint32_t f1 = et_[c.t0].r, f2 = et_[c.t0 + 1].r;
+    if (!(key_[f1] == key_[f2]) || !(key_[f1].given == kNoTag || split_markers_)) continue;
+    bends.push_back(bend_edge(ci, f1, f2));
+    which.push_back(std::uint32_t(ci));
+  }
+  const FeatureRule rule{params_.feature_angle_deg, std::max(params_.feature_angle_deg, params_.strong_angle_deg),
+                         params_.min_feature_chain_edges};
+  const std::vector<FeatureVerdict> v = select_feature_edges(bends, rule);
+  for (std::size_t k = 0; k < which.size(); ++k) verdict_[which[k]] = std::uint8_t(v[k]);
+}
+
 // Model faces: model-face triangles united across edges with exactly two of
-// them, of equal keys, and (no tag given) a bend within the feature angle.
+// them, of equal keys, and (where the feature angle applies) no feature edge
+// between them (judge_bends).
 void ModelInference::group_model_faces() {
   const std::size_t nmf = mf_.size();
+  judge_bends();
   UnionFind uf(nmf);
-  for (const Cand& c : cand_) {
+  for (std::size_t ci = 0; ci < cand_.size(); ++ci) {
+    const Cand& c = cand_[ci];
     if (c.t1 - c.t0 != 2) continue;
     const std::uint32_t f1 = et_[c.t0].r, f2 = et_[c.t0 + 1].r;
     if (!(key_[f1] == key_[f2])) continue;
-    if (key_[f1].given == kNoTag || split_markers_) {
-      const auto ev = m_.edge(EdgeId(c.e));
-      double ang = bend_angle(m_.point(ev[0]), m_.point(ev[1]), m_.point(third_vertex(m_, TriId(mf_[f1]), EdgeId(c.e))),
-                              m_.point(third_vertex(m_, TriId(mf_[f2]), EdgeId(c.e))));
-      if (ang > params_.feature_angle_deg) continue;
-    }
+    if (verdict_[ci] == std::uint8_t(FeatureVerdict::Strong) || verdict_[ci] == std::uint8_t(FeatureVerdict::Chain))
+      continue;
     uf.unite(f1, f2);
   }
   std::vector<std::int32_t> comp_of(nmf, -1), comp_given;
@@ -618,21 +686,40 @@ void ModelInference::find_model_edges() {
       for (VertexId v : m_.edge(EdgeId(cand_[ci].e))) vme_[fill[v.idx]++] = std::uint32_t(ci);
 }
 
+// The other end of model-edge candidate ci at vertex v.
+VertexId ModelInference::across(std::uint32_t ci, std::size_t v) const {
+  const auto e = m_.edge(EdgeId(cand_[ci].e));
+  return e[0] == VertexId(v) ? e[1] : e[0];
+}
+
+// The turn (degrees) of an inferred model edge at v, where exactly two of its
+// segments meet with one key; 0 where no such curve passes through v.
+double ModelInference::turn_at(std::size_t v) const {
+  const auto es = v_me(v);
+  if (corner_given_[v] != kNoTag || es.size() != 2 || cand_[es[0]].given != kNoTag ||
+      cand_[es[1]].given != kNoTag || edge_key(es[0]) != edge_key(es[1]))
+    return 0;
+  const Point3& p = m_.point(VertexId(v));
+  return angle_deg(p - m_.point(across(es[0], v)), m_.point(across(es[1], v)) - p);
+}
+
 // A vertex is a model vertex if given one, where model faces touch without a
-// model edge, where model edges end, branch or change key, or at a sharp
-// corner between two model-edge segments (double geometry, like the bends).
+// model edge, where model edges end, branch or change key, or where an
+// inferred model edge kinks: turns above the feature angle between
+// neighbours that turn by at most half of it (not the even turning of a
+// coarse curve, nor the zigzag of a curve traced through a labelled image).
+// Double geometry, like the bends.
 bool ModelInference::is_model_vertex(std::size_t v) const {
   const auto es = v_me(v);
   if (corner_given_[v] != kNoTag) return true;
   if (es.empty()) return v_multi_face_[v] != 0;
   if (es.size() != 2 || edge_key(es[0]) != edge_key(es[1])) return true;
   if (cand_[es[0]].given != kNoTag) return false;
-  const auto e0 = m_.edge(EdgeId(cand_[es[0]].e)), e1 = m_.edge(EdgeId(cand_[es[1]].e));
-  VertexId a = e0[0] == VertexId(v) ? e0[1] : e0[0];
-  VertexId b = e1[0] == VertexId(v) ? e1[1] : e1[0];
-  Vec3 d1 = m_.point(VertexId(v)) - m_.point(a), d2 = m_.point(b) - m_.point(VertexId(v));
-  double cs = dot(d1, d2) / (norm(d1) * norm(d2));
-  return degrees(std::acos(std::clamp(cs, -1.0, 1.0))) > params_.feature_angle_deg;
+  const double turn = turn_at(v);
+  if (turn <= params_.feature_angle_deg) return false;
+  for (std::uint32_t ci : es)
+    if (turn_at(across(ci, v).idx) > params_.feature_angle_deg / 2) return false;
+  return true;
 }
 
 void ModelInference::find_model_vertices() {
@@ -823,6 +910,44 @@ void ModelInference::report_completion() {
   }
 }
 
+// Per face marker (kNoTag first: the untagged triangles): its triangles, the
+// model faces, edges and vertices on them, and the verdicts on its sharp
+// edges (ClassifiedTetMesh::marker_features()).
+void ModelInference::report_markers() {
+  if (soup_.full_classification) return;
+  struct Acc {
+    MarkerFeatures out;
+    std::set<std::int32_t> faces, edges, corners;
+  };
+  std::map<std::int32_t, Acc> acc;
+  const auto& vclass = TetMeshBuilder::vertex_class(m_);
+  const auto& eclass = TetMeshBuilder::edge_class(m_);
+  for (std::size_t r = 0; r < mf_.size(); ++r) {
+    Acc& a = acc[key_[r].given];
+    ++a.out.facets;
+    a.faces.insert(tri_face_[mf_[r]]);
+    for (EdgeId e : triangle_edges(m_, TriId(mf_[r])))
+      if (eclass[e.idx].dim == 1) a.edges.insert(eclass[e.idx].tag);
+    for (VertexId v : m_.triangle(TriId(mf_[r])))
+      if (vclass[v.idx].dim == 0) a.corners.insert(vclass[v.idx].tag);
+  }
+  for (std::size_t ci = 0; ci < cand_.size(); ++ci) {
+    if (verdict_[ci] == kNotTested || verdict_[ci] == std::uint8_t(FeatureVerdict::Smooth)) continue;
+    MarkerFeatures& o = acc[key_[et_[cand_[ci].t0].r].given].out;
+    ++o.sharp_edges;
+    const auto v = FeatureVerdict(verdict_[ci]);
+    ++(v == FeatureVerdict::Strong ? o.strong_edges : v == FeatureVerdict::Chain ? o.chain_edges : o.noise_edges);
+  }
+  auto& out = TetMeshBuilder::marker_features(m_);
+  for (auto& [marker, a] : acc) {
+    if (marker != kNoTag) a.out.marker = marker;
+    a.out.model_faces = a.faces.size();
+    a.out.model_edges = a.edges.size();
+    a.out.corners = a.corners.size();
+    out.push_back(a.out);
+  }
+}
+
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
@@ -831,11 +956,16 @@ double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock:
 void ClassifyParams::validate() const {
   check_param("ClassifyParams::feature_angle_deg", "degrees",
               ParamRange{kMinFeatureAngleDeg, kMaxFeatureAngleDeg, /*lo_open=*/true}, feature_angle_deg);
+  check_param("ClassifyParams::strong_angle_deg", "degrees",
+              ParamRange{kMinFeatureAngleDeg, kMaxFeatureAngleDeg, /*lo_open=*/true}, strong_angle_deg);
+  check_param("ClassifyParams::min_feature_chain_edges", "edges", ParamRange{1, 1e6}, double(min_feature_chain_edges));
 }
 
 Json ClassifyParams::to_json() const {
   Json j = Json::object();
   j.set("feature_angle_deg", feature_angle_deg);
+  j.set("strong_angle_deg", strong_angle_deg);
+  j.set("min_feature_chain_edges", min_feature_chain_edges);
   return j;
 }
 

@@ -22,9 +22,21 @@ struct ClassifyParams {
   // model vertex is made). Applies to untagged model faces and inside given
   // face markers, not to a full classification's surfaces. Range (0, 180]: 0
   // excluded (every bend would split); 180 disables geometric splitting.
+  // An edge bending above it is only a candidate: it splits model faces when
+  // it is a feature (classify/features.h): above the strong angle, or in a
+  // chain of consistently sharp edges, not isolated or zigzag facets of a
+  // coarse curved surface.
   double feature_angle_deg = 30.0;
   static constexpr double kMinFeatureAngleDeg = 0.0;  // excluded
   static constexpr double kMaxFeatureAngleDeg = 180.0;
+  // Dihedral bend (degrees) above which an edge is always a feature, and a
+  // turn of a model edge above which its vertex is always a corner (the
+  // larger of this and feature_angle_deg applies). Range (0, 180].
+  double strong_angle_deg = 60.0;
+  // A chain of consistently sharp edges this long (in primal edges) is a
+  // feature line; shorter ones only when they join features at both ends.
+  // Range [1, 1e6].
+  std::size_t min_feature_chain_edges = 3;
 
   // Throws UsageError naming the field, its unit and its allowed range.
   void validate() const;

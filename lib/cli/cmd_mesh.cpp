@@ -26,10 +26,10 @@ const CommandSpec kGenerate{
     {"--tets=10000", "-o", "--threads", "--quiet"}};
 
 const CommandSpec kInfo{
-    "info", "info FILE [--json] [--feature-angle DEG] [--threads N] [--quiet]",
+    "info", "info FILE [--json] [--feature-angle DEG] [--strong-angle DEG] [--threads N] [--quiet]",
     "Reads and classifies a tet mesh; prints its size and its geometric model.",
     1, 1,
-    {"--feature-angle", "--threads", "--json", "--quiet"}};
+    {"--feature-angle", "--strong-angle", "--threads", "--json", "--quiet"}};
 
 int cmd_generate(const Settings& s) {
   const Domain d = parse_domain(s.positional[0]);
@@ -58,6 +58,14 @@ void print_model(const std::string& path, const ClassifiedTetMesh& m, const Json
     for (auto r : f.bounds) std::printf(" region %d", r);
     std::printf("\n");
   }
+  // Per face marker: what the feature inference split and why (design §3).
+  for (const MarkerFeatures& mf : m.marker_features()) {
+    const std::string name = mf.marker ? "marker " + std::to_string(*mf.marker) : std::string("untagged");
+    std::printf("  %s: %zu triangles -> %zu faces, %zu edges, %zu corners; %zu sharp edges: %zu strong and %zu in "
+                "feature lines kept, %zu dropped as noise\n",
+                name.c_str(), mf.facets, mf.model_faces, mf.model_edges, mf.corners, mf.sharp_edges, mf.strong_edges,
+                mf.chain_edges, mf.noise_edges);
+  }
 }
 }  // namespace
 
@@ -82,9 +90,7 @@ int cmd_info(const Settings& s) {
   j.set("edges", m.num_edges());
   j.set("ignored", ignored_summary(soup.ignored));
   j.set("model", model);
-  Json params = Json::object();
-  params.set("feature_angle_deg", s.params.classify.feature_angle_deg);
-  j.set("params", params);
+  j.set("params", s.params.classify.to_json());
   j.set("seconds", seconds);
   if (s.json) print_json(j);
   else print_model(path, m, model);

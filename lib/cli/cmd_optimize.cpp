@@ -20,7 +20,7 @@ const CommandSpec kOptimize{
     "optimize", "optimize IN.vtu -o OUT.vtu [options]",
     "Untangles and smooths a polyhedral mesh written by polydual (paper §3.3).",
     1, 1,
-    {"-o", "--vtu-encoding", "--zlib", "--primal", "--require-valid", "--feature-angle", "--optimize", "--planarity", "--metric", "--derivatives", "--relaxation", "--tol", "--polish-sweeps", "--polish-share", "--worst-rounds", "--settle-move", "--max-iter", "--threads",
+    {"-o", "--vtu-encoding", "--zlib", "--primal", "--require-valid", "--feature-angle", "--strong-angle", "--optimize", "--planarity", "--metric", "--derivatives", "--relaxation", "--tol", "--polish-sweeps", "--polish-share", "--worst-rounds", "--settle-move", "--max-iter", "--threads",
      "--json", "--quiet"}};
 
 int cmd_optimize(const Settings& s) {

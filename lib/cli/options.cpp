@@ -46,6 +46,10 @@ const std::vector<OptionDef> kTable = {
      "dihedral angle (degrees) above which inferred model faces split",
      [](const Settings& d) { return num(d.params.classify.feature_angle_deg); },
      [](Settings& s, const std::string& v) { s.params.classify.feature_angle_deg = std::stod(v); }},
+    {"--strong-angle", K::Real, "DEG", ClassifyParams::kMinFeatureAngleDeg, ClassifyParams::kMaxFeatureAngleDeg,
+     "dihedral angle (degrees) above which a sharp edge is always a feature (below it, only in a feature line)",
+     [](const Settings& d) { return num(d.params.classify.strong_angle_deg); },
+     [](Settings& s, const std::string& v) { s.params.classify.strong_angle_deg = std::stod(v); }},
     {"--boundary", K::Choice, "keep|caps", kNoRange, kNoRange,
      "the dual's boundary: the primal's boundary triangulation, tiled by planar quads (each material's volume "
      "kept exactly), or the paper's caps joining the boundary triangles' centres",

@@ -108,6 +108,24 @@ struct ModelTopology {
   FaceKind face_kind(std::int32_t tag) const;
 };
 
+// What classify() made of one face marker of the file (a surface tag of
+// TetGen .face, Medit refs, Gmsh 2.2 physicals, VTU cell data), or of the
+// boundary and interface triangles the file tagged with none, and why: the
+// edges inside it that bend above the feature angle, which of them were kept
+// as features (classify/features.h) and which dropped as the facets of a
+// curved surface, and the model entities that resulted.
+struct MarkerFeatures {
+  std::optional<std::int32_t> marker;  // none: the untagged triangles
+  std::size_t facets = 0;              // model-face triangles
+  std::size_t model_faces = 0;         // model faces made from them
+  std::size_t model_edges = 0;         // model edges along those faces
+  std::size_t corners = 0;             // model vertices on those faces
+  std::size_t sharp_edges = 0;         // bending above the feature angle inside the marker
+  std::size_t strong_edges = 0;        // kept: above the strong angle
+  std::size_t chain_edges = 0;         // kept: in a feature line (a chain of consistently sharp edges)
+  std::size_t noise_edges = 0;         // dropped: isolated, zigzag or short loose chains
+};
+
 class ClassifiedTetMesh {
  public:
   // --- sizes
@@ -291,6 +309,9 @@ class ClassifiedTetMesh {
   // as complete (TetSoup::full_classification): one line each, starting with
   // the file name, for the command to print. Empty otherwise.
   const std::vector<std::string>& classification_warnings() const { return warnings_; }
+  // Per face marker (untagged first, then by marker): what classify() split
+  // and why. Empty for a full classification (its surfaces are not split).
+  const std::vector<MarkerFeatures>& marker_features() const { return marker_features_; }
 
   // Volume of tet t (double; for statistics only).
   double tet_volume(TetId t) const;
@@ -324,6 +345,7 @@ class ClassifiedTetMesh {
   std::vector<std::int32_t> tri_face_;
   ModelTopology model_;
   std::vector<std::string> warnings_;
+  std::vector<MarkerFeatures> marker_features_;
 };
 
 // Builds the connectivity of a ClassifiedTetMesh (adjacency, triangles, edges,
@@ -345,6 +367,7 @@ class TetMeshBuilder {
   static constexpr std::int32_t kNoFace = ClassifiedTetMesh::kNoFace;
   static ModelTopology& model(ClassifiedTetMesh& m) { return m.model_; }
   static std::vector<std::string>& classification_warnings(ClassifiedTetMesh& m) { return m.warnings_; }
+  static std::vector<MarkerFeatures>& marker_features(ClassifiedTetMesh& m) { return m.marker_features_; }
 
  private:
   // build_topology()'s phases, in order (lib/mesh/classified_tet_mesh.cpp).

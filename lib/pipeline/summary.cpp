@@ -169,6 +169,23 @@ Json model_summary(const ClassifiedTetMesh& m) {
     faces.push(o);
   }
   model.set("face_list", faces);
+  // Per face marker of the file: what the feature inference split and why.
+  Json markers = Json::array();
+  for (const MarkerFeatures& mf : m.marker_features()) {
+    Json o = Json::object();
+    if (mf.marker) o.set("marker", *mf.marker);
+    else o.set("marker", Json());
+    o.set("facets", mf.facets);
+    o.set("model_faces", mf.model_faces);
+    o.set("model_edges", mf.model_edges);
+    o.set("corners", mf.corners);
+    o.set("sharp_edges", mf.sharp_edges);
+    o.set("feature_edges_strong", mf.strong_edges);
+    o.set("feature_edges_chain", mf.chain_edges);
+    o.set("noise_edges", mf.noise_edges);
+    markers.push(o);
+  }
+  model.set("markers", markers);
   return model;
 }
 
