@@ -450,6 +450,22 @@ void run_split(ConvertResult& r, SplitState& st, const PipelineParams& params, c
   });
 }
 
+// "cell C (vertex V, class dim D tag T)" of each invalid cell, V in the
+// input numbering; at most `limit` items.
+std::vector<std::string> invalid_cell_items(const ConvertResult& r, std::size_t limit) {
+  std::vector<std::string> items;
+  const std::vector<VertexId> internal = internal_of_input(r.primal);
+  for (std::size_t c = 0; c < r.check.verdicts.size() && items.size() < limit; ++c) {
+    if (r.check.verdicts[c].valid) continue;
+    const VertexId in = r.mesh.cell_primal[c];
+    const ModelRef cls = in.idx < internal.size() && internal[in.idx].valid() ? r.primal.vertex_class(internal[in.idx])
+                                                                            : ModelRef{};
+    items.push_back("cell " + std::to_string(c) + " (vertex " + std::to_string(in.idx) + ", class dim " +
+                    std::to_string(cls.dim) + " tag " + std::to_string(cls.tag) + ")");
+  }
+  return items;
+}
+
 // --require-valid: the validation's failed checks (ValidationReport::defects)
 // and every cell still invalid, with its primal vertex (input numbering) and
 // its classification, as one InputError.
@@ -460,14 +476,7 @@ void require_valid(const ConvertResult& r) {
   if (!defects.empty()) what = "the dual is not sound: " + defects_sentence(defects) + (r.check.invalid_cells ? "; " : "");
   if (r.check.invalid_cells == 0) throw InputError(r.primal.source(), "", what);
   what += std::to_string(r.check.invalid_cells) + " cells remain invalid after the split:";
-  const std::vector<VertexId> internal = internal_of_input(r.primal);
-  for (std::size_t c = 0; c < r.check.verdicts.size(); ++c) {
-    if (r.check.verdicts[c].valid) continue;
-    const VertexId in = r.mesh.cell_primal[c];
-    const ModelRef cls = r.primal.vertex_class(internal[in.idx]);
-    what += " cell " + std::to_string(c) + " (vertex " + std::to_string(in.idx) + ", class dim " +
-            std::to_string(cls.dim) + " tag " + std::to_string(cls.tag) + ");";
-  }
+  for (const std::string& item : invalid_cell_items(r, r.check.invalid_cells)) what += " " + item + ";";
   throw InputError(r.primal.source(), "", what);
 }
 
@@ -533,6 +542,11 @@ void run_pipeline(ConvertResult& r, const TetSoup& soup, const PipelineParams& p
 }
 
 }  // namespace
+
+Defect invalid_cells_defect(const ConvertResult& r) {
+  return Defect{"invalid_cells", "cells not star-shaped by the exact test", r.check.invalid_cells,
+                invalid_cell_items(r, kListedDefects)};
+}
 
 const StageRecord* ConvertReport::stage(const std::string& name) const {
   for (const StageRecord& s : stages)
