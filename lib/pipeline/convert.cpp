@@ -305,6 +305,13 @@ Json split_causes(const ConvertResult& r, const SplitState& st) {
                      CutCause::Other})
     j.set(cut_cause_name(k), n[int(k)]);
   j.set("still_invalid", r.check.invalid_cells);
+  // Of those, the cells of whole vertices: barycentric corners, convex in
+  // exact arithmetic; only the rounding of their points could leave one
+  // (proofs/split.md T1). Expected 0.
+  std::size_t corners = 0;
+  for (std::size_t c = 0; c < r.check.verdicts.size(); ++c)
+    corners += !r.check.verdicts[c].valid && st.whole[st.internal_of_input[r.mesh.cell_primal[c].idx].idx];
+  j.set("still_invalid_whole", corners);
   return j;
 }
 
