@@ -310,7 +310,7 @@ Json split_causes(const ConvertResult& r, const SplitState& st) {
   // (proofs/split.md T1). Expected 0.
   std::size_t corners = 0;
   for (std::size_t c = 0; c < r.check.verdicts.size(); ++c)
-    corners += !r.check.verdicts[c].valid && st.whole[st.internal_of_input[r.mesh.cell_primal[c].idx].idx];
+    corners += !r.check.verdicts[c].valid && st.cuts.is_whole(st.internal_of_input[r.mesh.cell_primal[c].idx]);
   j.set("still_invalid_whole", corners);
   return j;
 }
@@ -386,10 +386,10 @@ void run_split(ConvertResult& r, SplitState& st, const PipelineParams& params, c
       }
     };
     // One round: cuts whole the vertices of the invalid cells not yet whole
-    // (false when there is none), rebuilds, checks, re-optimises if asked.
+    // (false when there is none, unless `rebuild`: the closure's first round,
+    // after an optimiser that may have moved pinned points), rebuilds,
+    // checks, re-optimises if asked.
     int k = k0, closure_rounds = 0;
-    // `rebuild`: run the round even when no vertex is newly cut (the
-    // closure's first: the optimiser may have moved pinned points).
     auto round = [&](bool reoptimise, bool rebuild) {
       throw_if_interrupted();
       const std::vector<VertexId> raised = escalate_vertices(st, r.primal, invalid_per_vertex(st, r.mesh, r.check));
