@@ -44,6 +44,9 @@ int cmd_convert(const Settings& s) {
   if (const std::vector<Defect> defects = r.check.validation.defects(); !defects.empty())
     print_defects("convert", "warning", s.out + " written, but the dual is not sound (--require-valid refuses it):",
                   defects);
+  if (const Defect invalid = invalid_cells_defect(r); invalid.count > 0)
+    print_defects("convert", "warning", s.out + " written with cells that are not star-shaped (--require-valid refuses it):",
+                  {invalid});
   return 0;
 }
 

@@ -119,13 +119,41 @@ VertexCuts union_of_cuts(const SplitState& st, const ClassifiedTetMesh& m) {
   return with_whole_cuts(m, st.free_edge, st.whole);
 }
 
+// The cells holding a point pinned by one of `raised` (vertices newly cut
+// whole: their barycentric points are where the previous positions were
+// lost) or found invalid by `check`: the seeds of a round's re-optimisation.
+std::vector<char> round_seed(const ClassifiedTetMesh& m, std::span<const VertexId> raised, const PolyMesh& mesh,
+                             const CheckResult& check) {
+  std::vector<char> seed(mesh.num_cells(), 0);
+  for (std::size_t c = 0; c < seed.size() && c < check.verdicts.size(); ++c) seed[c] = !check.verdicts[c].valid;
+  if (mesh.point_origin.size() != mesh.num_points()) return std::vector<char>(mesh.num_cells(), 1);
+  VertexCuts newly;
+  newly.whole.assign(m.num_vertices(), 0);
+  for (VertexId v : raised) newly.whole[v.idx] = 1;
+  std::vector<char> pin(mesh.num_points(), 0);
+  for (std::size_t p = 0; p < pin.size(); ++p) pin[p] = char(pinned(m, &newly, mesh.point_origin[p]));
+  CellPointScan points(mesh);
+  for (std::size_t c = 0; c < seed.size(); ++c)
+    for (PointId p : points(CellId(c)))
+      if (pin[p.idx]) {
+        seed[c] = 1;
+        break;
+      }
+  return seed;
+}
+
 // One round: rebuild with the union of cuts, the points not pinned by a whole
 // vertex warm-started from `old` (the previous mesh), check (verdicts only;
 // the cells equal to one of `old` keep their verdict in old_check,
-// split/recheck.h). Leaves the new mesh and its check in r; returns the
-// round's record.
+// split/recheck.h). With `reoptimise` (the optimised rounds) and cells still
+// invalid, the optimiser then runs near the newly pinned points and the
+// invalid cells, and the mesh is checked again: a neighbour that the
+// barycentric points of `raised` made invalid is moved back to validity
+// rather than cut whole in the next round (the optimiser accepts no move that
+// makes a valid cell invalid, exactly). Leaves the new mesh and its check in
+// r; returns the round's record.
 Json split_round(ConvertResult& r, const PolyMesh& old, const CheckResult& old_check, SplitState& st,
-                 const PipelineParams& params) {
+                 const PipelineParams& params, std::span<const VertexId> raised, bool reoptimise) {
   Json sec = Json::object();  // the round's parts, wall seconds
   Stopwatch w;
   auto lap = [&](const char* part) {
@@ -140,6 +168,7 @@ Json split_round(ConvertResult& r, const PolyMesh& old, const CheckResult& old_c
   sec.set("dual_parts", ds.to_json());
   Json j = Json::object();
   j.set("local", false);
+  j.set("closure", !reoptimise);
   j.set("vertices_whole", num_whole(st));
   j.set("cells", fresh.num_cells());
   std::vector<PointId> from_old;
@@ -149,6 +178,18 @@ Json split_round(ConvertResult& r, const PolyMesh& old, const CheckResult& old_c
   r.check = recheck_mesh(fresh, old, old_check, from_old, &rs);
   lap("star_test");
   r.mesh = std::move(fresh);
+  j.set("invalid_built", r.check.invalid_cells);
+  if (reoptimise && r.check.invalid_cells > 0) {
+    // Untangling only: validity is what decides the next round's cuts; the
+    // kept mesh is smoothed once at the end (run_split).
+    const std::vector<char> seed = round_seed(r.primal, raised, r.mesh, r.check);
+    OptimParams untangle = params.optim;
+    untangle.method = OptimParams::Method::Untangle;
+    optimize(r.mesh, &r.primal, untangle, {}, seed, r.check.verdicts);
+    lap("optimize");
+    r.check = check_mesh(r.mesh, &r.primal, false);
+    lap("star_test_after");
+  }
   j.set("invalid_after", r.check.invalid_cells);
   j.set("cells_rechecked", rs.rechecked);
   j.set("seconds", sec);
@@ -175,11 +216,6 @@ std::vector<VertexId> escalate_vertices(SplitState& st, const ClassifiedTetMesh&
     raised.push_back(VertexId(v));
   }
   return raised;
-}
-
-// Marks whole the vertex of every invalid cell; false when all already were.
-bool escalate(SplitState& st, const ClassifiedTetMesh& m, const PolyMesh& mesh, const CheckResult& check) {
-  return !escalate_vertices(st, m, invalid_per_vertex(st, mesh, check)).empty();
 }
 
 // The whole rebuild with the union of cuts and its exact check, into r. Its
@@ -269,6 +305,13 @@ Json split_causes(const ConvertResult& r, const SplitState& st) {
                      CutCause::Other})
     j.set(cut_cause_name(k), n[int(k)]);
   j.set("still_invalid", r.check.invalid_cells);
+  // Of those, the cells of whole vertices: barycentric corners, convex in
+  // exact arithmetic; only the rounding of their points could leave one
+  // (proofs/split.md T1). Expected 0.
+  std::size_t corners = 0;
+  for (std::size_t c = 0; c < r.check.verdicts.size(); ++c)
+    corners += !r.check.verdicts[c].valid && st.cuts.is_whole(st.internal_of_input[r.mesh.cell_primal[c].idx]);
+  j.set("still_invalid_whole", corners);
   return j;
 }
 
@@ -325,18 +368,13 @@ void run_split(ConvertResult& r, SplitState& st, const PipelineParams& params, c
         best_check = check_mesh(best_mesh, &r.primal, false);
       }
     }
-    for (int k = k0; k < params.split.max_rounds && r.check.invalid_cells > 0; ++k) {
-      throw_if_interrupted();
-      if (!escalate(st, r.primal, r.mesh, r.check)) break;
-      PolyMesh old = std::move(r.mesh);
-      CheckResult old_check = std::move(r.check);
-      VertexCuts old_cuts = std::move(st.cuts);
-      rounds.push(split_round(r, old, old_check, st, params));
-      split_progress(hooks, params, clock, k + 1, r.check.invalid_cells, st);
+    // Keeps the round just run if it is the best so far, else keeps (moves
+    // aside) the best one.
+    auto keep_best = [&](PolyMesh&& old, CheckResult&& old_check, VertexCuts&& old_cuts, int round) {
       if (r.check.invalid_cells < best_invalid) {
         best_is_current = true;
         best_invalid = r.check.invalid_cells;
-        best_round = k + 1;
+        best_round = round;
         best_mesh = PolyMesh{};
         best_check = CheckResult{};
         best_cuts = VertexCuts{};
@@ -345,6 +383,42 @@ void run_split(ConvertResult& r, SplitState& st, const PipelineParams& params, c
         best_mesh = std::move(old);
         best_check = std::move(old_check);
         best_cuts = std::move(old_cuts);
+      }
+    };
+    // One round: cuts whole the vertices of the invalid cells not yet whole
+    // (false when there is none, unless `rebuild`: the closure's first round,
+    // after an optimiser that may have moved pinned points), rebuilds,
+    // checks, re-optimises if asked.
+    int k = k0, closure_rounds = 0;
+    auto round = [&](bool reoptimise, bool rebuild) {
+      throw_if_interrupted();
+      const std::vector<VertexId> raised = escalate_vertices(st, r.primal, invalid_per_vertex(st, r.mesh, r.check));
+      if (raised.empty() && !rebuild) return false;
+      PolyMesh old = std::move(r.mesh);
+      CheckResult old_check = std::move(r.check);
+      VertexCuts old_cuts = std::move(st.cuts);
+      rounds.push(split_round(r, old, old_check, st, params, raised, reoptimise));
+      split_progress(hooks, params, clock, ++k, r.check.invalid_cells, st);
+      keep_best(std::move(old), std::move(old_check), std::move(old_cuts), k);
+      return true;
+    };
+    const bool optimise = params.optim.method != OptimParams::Method::None;
+    const int first = k;
+    while (k < params.split.max_rounds && r.check.invalid_cells > 0 && round(optimise, false)) {
+    }
+    // The closure (proofs/split.md, T1): rounds without re-optimisation, not
+    // bounded by max_rounds, every pinned point at its barycentre, until
+    // every invalid cell is a cell of a whole vertex. The whole set grows in
+    // every round after the first, so at most |V| + 1 rounds; at worst every
+    // vertex is whole and the dual is the barycentric subdivision, whose cells
+    // are all convex (proofs/dual_cuts.md C5). Its first round rebuilds even
+    // when no vertex is newly cut if the rounds before re-optimised (pinned
+    // points may have moved).
+    if (params.split.max_rounds > 0) {
+      bool rebuild = optimise && k > first;
+      while (r.check.invalid_cells > 0 && round(false, rebuild)) {
+        rebuild = false;
+        ++closure_rounds;
       }
     }
     if (!best_is_current) {
@@ -367,6 +441,7 @@ void run_split(ConvertResult& r, SplitState& st, const PipelineParams& params, c
       r.mesh.cell_origin = cut_cell_origins(r.primal, st.cuts, r.mesh);
     stats.set("rounds", rounds);
     stats.set("kept_round", best_round);
+    stats.set("closure_rounds", closure_rounds);
     stats.set("free_edge_vertices", st.free_edge.num_vertices_cut());
     stats.set("vertices_cut", st.cuts.num_vertices_cut());
     stats.set("cells_split", split_causes(r, st));
@@ -382,6 +457,22 @@ void run_split(ConvertResult& r, SplitState& st, const PipelineParams& params, c
   });
 }
 
+// "cell C (vertex V, class dim D tag T)" of each invalid cell, V in the
+// input numbering; at most `limit` items.
+std::vector<std::string> invalid_cell_items(const ConvertResult& r, std::size_t limit) {
+  std::vector<std::string> items;
+  const std::vector<VertexId> internal = internal_of_input(r.primal);
+  for (std::size_t c = 0; c < r.check.verdicts.size() && items.size() < limit; ++c) {
+    if (r.check.verdicts[c].valid) continue;
+    const VertexId in = r.mesh.cell_primal[c];
+    const ModelRef cls = in.idx < internal.size() && internal[in.idx].valid() ? r.primal.vertex_class(internal[in.idx])
+                                                                            : ModelRef{};
+    items.push_back("cell " + std::to_string(c) + " (vertex " + std::to_string(in.idx) + ", class dim " +
+                    std::to_string(cls.dim) + " tag " + std::to_string(cls.tag) + ")");
+  }
+  return items;
+}
+
 // --require-valid: the validation's failed checks (ValidationReport::defects)
 // and every cell still invalid, with its primal vertex (input numbering) and
 // its classification, as one InputError.
@@ -392,14 +483,7 @@ void require_valid(const ConvertResult& r) {
   if (!defects.empty()) what = "the dual is not sound: " + defects_sentence(defects) + (r.check.invalid_cells ? "; " : "");
   if (r.check.invalid_cells == 0) throw InputError(r.primal.source(), "", what);
   what += std::to_string(r.check.invalid_cells) + " cells remain invalid after the split:";
-  const std::vector<VertexId> internal = internal_of_input(r.primal);
-  for (std::size_t c = 0; c < r.check.verdicts.size(); ++c) {
-    if (r.check.verdicts[c].valid) continue;
-    const VertexId in = r.mesh.cell_primal[c];
-    const ModelRef cls = r.primal.vertex_class(internal[in.idx]);
-    what += " cell " + std::to_string(c) + " (vertex " + std::to_string(in.idx) + ", class dim " +
-            std::to_string(cls.dim) + " tag " + std::to_string(cls.tag) + ");";
-  }
+  for (const std::string& item : invalid_cell_items(r, r.check.invalid_cells)) what += " " + item + ";";
   throw InputError(r.primal.source(), "", what);
 }
 
@@ -465,6 +549,11 @@ void run_pipeline(ConvertResult& r, const TetSoup& soup, const PipelineParams& p
 }
 
 }  // namespace
+
+Defect invalid_cells_defect(const ConvertResult& r) {
+  return Defect{"invalid_cells", "cells not star-shaped by the exact test", r.check.invalid_cells,
+                invalid_cell_items(r, kListedDefects)};
+}
 
 const StageRecord* ConvertReport::stage(const std::string& name) const {
   for (const StageRecord& s : stages)

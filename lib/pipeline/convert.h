@@ -68,6 +68,12 @@ struct ConvertHooks {
 // defects in r.check.validation for the caller to report.
 ConvertResult convert(const TetSoup& soup, const PipelineParams& params, const ConvertHooks& hooks = {});
 
+// The cells of r.mesh that the exact star test found invalid, as a Defect
+// ("invalid_cells"; count 0: none): each item "cell C (vertex V, class dim D
+// tag T)", V in the input numbering. The command prints it as a warning
+// (at most 10 items, then "and N more"); --require-valid refuses such a mesh.
+Defect invalid_cells_defect(const ConvertResult& r);
+
 // Writes r.mesh with its verdicts as cell data ("valid", "bad_tets") and, for
 // a split mesh, each cell's uncut cell ("split_from").
 Json write_result(const ConvertResult& r, const std::string& path, PolyFormat format,
