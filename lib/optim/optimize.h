@@ -107,6 +107,12 @@ struct OptimParams {
   // objective of the paper, unchanged. Derivatives of the term by central
   // differences (step fd_step). Global and Untangle refuse W > 0.
   double planarity = 0;
+  // Local (sweeps, polish, min-max descent) and Untangle: a move is also
+  // rejected if it makes a cell that passes OpenFOAM's face-pyramid and
+  // face-tet checks fail them (optim/foam_gate.h; floating point, beside the
+  // exact star test), and the cells failing them after the sweeps get a
+  // repair descent. Default true; false: the star test alone.
+  bool foam_gate = true;
   static constexpr double kMaxPlanarity = 1000.0;
   // Global: L-BFGS iterations per round. Default 50.
   int global_iterations_per_round = 50;
@@ -139,8 +145,27 @@ struct IterationRecord {
   Json to_json() const;
 };
 
+// A cell left above OptimReport::kWorstBound: its points that no move may
+// displace (dof 0: model vertices, unclassified points, boundary points when
+// no primal constrains them) with their model entities, and how many of its
+// points slide on a model edge or face.
+struct WorstCell {
+  std::uint32_t cell = 0;
+  double quality = 0;
+  std::vector<std::pair<PointId, ModelRef>> pinned;
+  std::uint32_t on_edges = 0, on_faces = 0;
+  Json to_json() const;
+};
+
 struct OptimReport {
   std::vector<IterationRecord> iterations;
+  // Cells failing the OpenFOAM gate (OptimParams::foam_gate) before and after.
+  std::size_t foam_failing_before = 0, foam_failing_after = 0;
+  // The cells above kWorstBound after the run, worst first, at most kMaxWorstCells.
+  static constexpr double kWorstBound = 10.0;
+  static constexpr std::size_t kMaxWorstCells = 20;
+  std::vector<WorstCell> worst_cells;
+  std::size_t cells_above_bound = 0;
   int invalid_before = 0, invalid_after = 0;
   QualityStats before, after;
   double seconds = 0;

@@ -107,12 +107,14 @@ class WorstDescent {
     const double ell = std::cbrt(v0 / static_cast<double>(cells.size()));
     int accepted = 0;
     double alpha = kStartStep * ell;  // each step starts at twice the last accepted length
+    before_.clear();
+    for (std::uint32_t c : cells) before_.push_back(ctx_.cell_quality[c]);
     while (accepted < kStepsPerVisit && step(p, k, ell, cells, alpha)) {
       ++accepted;
       ctx_.touched[p.idx] = 1;
-      for (std::size_t i = 0; i < cells.size(); ++i) {  // q_: the accepted position's
-        worst.update(cells[i], ctx_.cell_quality[cells[i]], q_[i]);
-        ctx_.cell_quality[cells[i]] = q_[i];
+      for (std::size_t i = 0; i < cells.size(); ++i) {  // q_: the accepted position's (gates_commit stored them)
+        worst.update(cells[i], before_[i], q_[i]);
+        before_[i] = q_[i];
       }
       if (worst.worst() != w) break;  // w is no longer the worst
     }
@@ -177,8 +179,10 @@ class WorstDescent {
       if (k < 3) x = ctx_.bc->project(p, x, &prim);
       if (!(measure(p, x, cells) < m0)) continue;
       ctx_.mesh.points[p.idx] = x;
-      if (keeps_valid(cells)) {
+      // Exact: the star test; then the floating-point gates (context.h).
+      if (keeps_valid(cells) && ctx_.gates_accept(cells, qg_)) {
         if (k < 3) ctx_.bc->commit(p, prim);
+        ctx_.gates_commit(cells, qg_);
         alpha = std::min(2 * alpha, kStartStep * ell);
         return true;
       }
@@ -199,7 +203,7 @@ class WorstDescent {
 
   Context& ctx_;
   std::uint64_t work_ = 0;
-  std::vector<double> q_, q0_;
+  std::vector<double> q_, q0_, qg_, before_;
   std::vector<Point3> scratch_;
 };
 
