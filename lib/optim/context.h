@@ -82,7 +82,7 @@ struct Context {
   // a function of a cell's own points, so that the parallel sweeps may use
   // them (the cells of one point are one thread's).
   //  - OpenFOAM's checks (params.foam_gate, optim/foam_gate.h): a cell that
-  //    passes must keep passing. loop_face: per stencil loop its mesh face;
+  //    passes must keep passing (while foam_active). loop_face: per stencil loop its mesh face;
   //    face_base: per mesh face its fan's base point; foam_ok: per cell.
   //  - The worst cell never gets worse: a valid cell may not rise above
   //    max(its quality before the move, quality_cap), quality_cap being the
@@ -92,6 +92,9 @@ struct Context {
   std::vector<PointId> face_base;
   std::vector<std::uint8_t> foam_ok;
   double quality_cap = std::numeric_limits<double>::infinity();
+  // Whether gates_accept applies the OpenFOAM gate now: in the repair, and
+  // with params.foam_gate_sweeps in every move.
+  bool foam_active = true;
   // The OpenFOAM gate's state for the mesh as it is (no-op without foam_gate).
   void init_gates();
   // After p's move (its cells `cells`, already passing the star test for the

@@ -23,14 +23,12 @@ double inner_sine(const Point3& t0, const Point3& t1, const Point3& t2, const Po
 }
 
 // Calls fn(sine) for every decomposition tet OpenFOAM checks on loop `loop`
-// (outward of its cell) with the cell centre C: the centre fan about the face
-// centre, then the vertex fan from `base` (skipped if base is not on the loop).
+// (outward of its cell, face centre F) with the cell centre C: the centre fan
+// about F, then the vertex fan from `base` (skipped if base is not on the loop).
 template <class Fn>
-void for_each_foam_tet(std::span<const PointId> loop, std::span<const Point3> pts, PointId base, const Point3& C,
-                       Fn&& fn) {
+void for_each_foam_tet(std::span<const PointId> loop, std::span<const Point3> pts, const Point3& F, PointId base,
+                       const Point3& C, Fn&& fn) {
   const std::size_t k = loop.size();
-  Vec3 area;
-  const Point3 F = foam_face_centre(loop, pts, &area);
   for (std::size_t i = 0; i < k; ++i) fn(inner_sine(pts[loop[i].idx], pts[loop[(i + 1) % k].idx], F, C));
   std::size_t b = k;
   for (std::size_t i = 0; i < k; ++i)
@@ -39,6 +37,31 @@ void for_each_foam_tet(std::span<const PointId> loop, std::span<const Point3> pt
   const Point3& pb = pts[base.idx];
   for (std::size_t t = 1; t + 1 < k; ++t)
     fn(inner_sine(pb, pts[loop[(b + t) % k].idx], pts[loop[(b + t + 1) % k].idx], C));
+}
+
+// Cell c's face centres (one per loop, outward) into F and its OpenFOAM
+// centre (primitiveMesh::makeCellCentresAndVols: pyramids about the mean of
+// the face centres; that mean if the volume vanishes).
+Point3 cell_centre_and_faces(const MeshStencil& s, std::uint32_t c, std::span<const Point3> points,
+                             std::vector<Point3>& F) {
+  const std::uint32_t j0 = s.cell_loop_off[c], j1 = s.cell_loop_off[c + 1];
+  thread_local std::vector<Vec3> A;
+  F.resize(j1 - j0);
+  A.resize(j1 - j0);
+  Point3 est;
+  for (std::uint32_t j = j0; j < j1; ++j) {
+    F[j - j0] = foam_face_centre(s.loop(j), points, &A[j - j0]);
+    est += F[j - j0];
+  }
+  est = est / static_cast<double>(j1 - j0);
+  Point3 sum;
+  double vol = 0;
+  for (std::size_t i = 0; i < F.size(); ++i) {
+    const double pyr3 = dot(A[i], F[i] - est);  // outward area: the owner's formula for both sides
+    sum += pyr3 * (0.75 * F[i] + 0.25 * est);
+    vol += pyr3;
+  }
+  return std::fabs(vol) > 1e-300 ? sum / vol : est;
 }
 
 // The worst sine of the vertex fan from loop point b with centre C (loop
@@ -98,23 +121,8 @@ Point3 foam_face_centre(std::span<const PointId> loop, std::span<const Point3> p
 }
 
 Point3 foam_cell_centre(const MeshStencil& s, std::uint32_t c, std::span<const Point3> points) {
-  const std::uint32_t j0 = s.cell_loop_off[c], j1 = s.cell_loop_off[c + 1];
-  Point3 est;
-  for (std::uint32_t j = j0; j < j1; ++j) {
-    Vec3 a;
-    est += foam_face_centre(s.loop(j), points, &a);
-  }
-  est = est / static_cast<double>(j1 - j0);
-  Point3 sum;
-  double vol = 0;
-  for (std::uint32_t j = j0; j < j1; ++j) {
-    Vec3 a;
-    const Point3 fc = foam_face_centre(s.loop(j), points, &a);
-    const double pyr3 = dot(a, fc - est);  // outward area: the owner's formula for both sides
-    sum += pyr3 * (0.75 * fc + 0.25 * est);
-    vol += pyr3;
-  }
-  return std::fabs(vol) > 1e-300 ? sum / vol : est;
+  thread_local std::vector<Point3> F;
+  return cell_centre_and_faces(s, c, points, F);
 }
 
 std::vector<std::uint32_t> stencil_loop_faces(const PolyMesh& mesh, const MeshStencil& s) {
@@ -153,20 +161,25 @@ void choose_foam_bases(const PolyMesh& mesh, const MeshStencil& s, std::span<con
 
 bool foam_cell_ok(const MeshStencil& s, std::uint32_t c, std::span<const Point3> points,
                   std::span<const PointId> base, std::span<const std::uint32_t> loop_face, Point3* centre) {
-  const Point3 C = foam_cell_centre(s, c, points);
+  thread_local std::vector<Point3> F;
+  const Point3 C = cell_centre_and_faces(s, c, points, F);
   if (centre) *centre = C;
   bool ok = true;
-  for (std::uint32_t j = s.cell_loop_off[c]; j < s.cell_loop_off[c + 1] && ok; ++j)
-    for_each_foam_tet(s.loop(j), points, base[loop_face[j]], C, [&](double sine) { ok = ok && sine > kFoamMargin; });
+  const std::uint32_t j0 = s.cell_loop_off[c];
+  for (std::uint32_t j = j0; j < s.cell_loop_off[c + 1] && ok; ++j)
+    for_each_foam_tet(s.loop(j), points, F[j - j0], base[loop_face[j]], C,
+                      [&](double sine) { ok = ok && sine > kFoamMargin; });
   return ok;
 }
 
 double foam_cell_violation(const MeshStencil& s, std::uint32_t c, std::span<const Point3> points,
                            std::span<const PointId> base, std::span<const std::uint32_t> loop_face) {
-  const Point3 C = foam_cell_centre(s, c, points);
+  thread_local std::vector<Point3> F;
+  const Point3 C = cell_centre_and_faces(s, c, points, F);
   double v = 0;
-  for (std::uint32_t j = s.cell_loop_off[c]; j < s.cell_loop_off[c + 1]; ++j)
-    for_each_foam_tet(s.loop(j), points, base[loop_face[j]], C, [&](double sine) {
+  const std::uint32_t j0 = s.cell_loop_off[c];
+  for (std::uint32_t j = j0; j < s.cell_loop_off[c + 1]; ++j)
+    for_each_foam_tet(s.loop(j), points, F[j - j0], base[loop_face[j]], C, [&](double sine) {
       if (!(sine > 2 * kFoamMargin)) v += std::isfinite(sine) ? 2 * kFoamMargin - sine : 2.0;
     });
   return v;
@@ -188,7 +201,7 @@ FoamCheck foam_check(const PolyMesh& mesh) {
       Vec3 a;
       const Point3 fc = foam_face_centre(loop[side], pts, &a);
       pyramid_bad |= !(dot(a, fc - C[cell[side].idx]) > 0);
-      for_each_foam_tet(loop[side], pts, PointId(), C[cell[side].idx], [&](double sine) { tets_bad |= !(sine > 0); });
+      for_each_foam_tet(loop[side], pts, fc, PointId(), C[cell[side].idx], [&](double sine) { tets_bad |= !(sine > 0); });
     }
     bool any_base = false;  // some base whose fan passes with both centres
     for (std::size_t b = 0; b < loop[0].size() && !any_base; ++b) {

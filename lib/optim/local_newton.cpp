@@ -762,7 +762,7 @@ void run_local(Context& ctx) {
     polish_worst(ctx, whole_passes(), solvers, sweep, last_change);
   }
   // The cells failing OpenFOAM's checks (optim/foam_gate.h) get a repair descent, in one more record.
-  if (!untangle_only && prm.foam_gate && prm.max_iter > 0 && ctx.foam_failing() > 0) {
+  if (!untangle_only && prm.foam_gate && prm.max_iter > 0) {
     ctx.lap("iterations");
     const IterationRecord r = repair_foam(ctx);
     ctx.lap("foam_repair");

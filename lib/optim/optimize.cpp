@@ -320,6 +320,7 @@ Json OptimParams::to_json() const {
   j.set("fd_step", fd_step);
   j.set("planarity", planarity);
   j.set("foam_gate", foam_gate);
+  j.set("foam_gate_sweeps", foam_gate_sweeps);
   j.set("global_iterations_per_round", global_iterations_per_round);
   return j;
 }

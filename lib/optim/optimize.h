@@ -107,12 +107,16 @@ struct OptimParams {
   // objective of the paper, unchanged. Derivatives of the term by central
   // differences (step fd_step). Global and Untangle refuse W > 0.
   double planarity = 0;
-  // Local (sweeps, polish, min-max descent) and Untangle: a move is also
-  // rejected if it makes a cell that passes OpenFOAM's face-pyramid and
-  // face-tet checks fail them (optim/foam_gate.h; floating point, beside the
-  // exact star test), and the cells failing them after the sweeps get a
-  // repair descent. Default true; false: the star test alone.
+  // Local: after the sweeps, the polish and the min-max descent, the cells
+  // failing OpenFOAM's face-pyramid and face-tet checks (optim/foam_gate.h;
+  // floating point, beside the exact star test) get a repair descent whose
+  // moves never make a cell that passes them fail. Default true; false: no repair.
   bool foam_gate = true;
+  // Local and Untangle, with foam_gate: the same gate on every move of the
+  // sweeps, the polish and the min-max descent too, so that no cell that
+  // passes ever fails. Default false: on TetGen sliver meshes it held the
+  // worst cell at 61 against 14 and the mean at 7.0 against 4.0.
+  bool foam_gate_sweeps = false;
   static constexpr double kMaxPlanarity = 1000.0;
   // Global: L-BFGS iterations per round. Default 50.
   int global_iterations_per_round = 50;
