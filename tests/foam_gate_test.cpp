@@ -169,6 +169,7 @@ TEST(OptimGates, TheOptimiserKeepsOpenFoamsChecksPassing) {
     EXPECT_LE(after.face_tet_faces, before.face_tet_faces) << "seed " << seed;
     EXPECT_LE(after.pyramid_faces, before.pyramid_faces) << "seed " << seed;
     EXPECT_LE(rep.foam_failing_after, rep.foam_failing_before) << "seed " << seed;
+    EXPECT_EQ(rep.foam_failing_cells.size(), rep.foam_failing_after) << "seed " << seed;
     failing_before += rep.foam_failing_before;
     failing_after += rep.foam_failing_after;
     const Json j = rep.to_json();

@@ -68,9 +68,14 @@ namespace {
 constexpr double kRepairStep = 0.25;
 constexpr int kRepairHalvings = 8;
 constexpr int kRepairRounds = 8;
+// The work bound, in passes over every point's cells (cells evaluated by
+// the violation): the repair's time grows with the mesh and nothing else.
+constexpr double kRepairBudget = 8;
 
-// The summed OpenFOAM violation of the failing cells among `cells`.
-double violation(const Context& ctx, std::span<const std::uint32_t> cells) {
+// The summed OpenFOAM violation of the failing cells among `cells`; adds
+// the cells evaluated to *work.
+double violation(const Context& ctx, std::span<const std::uint32_t> cells, std::uint64_t* work) {
+  *work += cells.size();
   double v = 0;
   for (std::uint32_t c : cells)
     if (!ctx.foam_ok[c]) v += foam_cell_violation(ctx.stencil, c, ctx.mesh.points, ctx.face_base, ctx.loop_face);
@@ -88,14 +93,14 @@ bool keeps_valid(const Context& ctx, std::span<const std::uint32_t> cells, std::
 // committed, if the failing cells' violation drops below v0, the star test
 // keeps the valid cells valid (exact) and both gates accept.
 bool try_repair_move(Context& ctx, PointId p, int k, Point3 x, double v0, std::vector<double>& q,
-                     std::vector<Point3>& scratch) {
+                     std::vector<Point3>& scratch, std::uint64_t* work) {
   const auto cells = ctx.stencil.cells_of(p);
   std::uint32_t prim = BoundaryConstraints::kNone;
   if (k < 3) x = ctx.bc->project(p, x, &prim);
   Point3& slot = ctx.mesh.points[p.idx];
   const Point3 o = slot;
   slot = x;
-  if (violation(ctx, cells) < v0 && keeps_valid(ctx, cells, scratch) && ctx.gates_accept(cells, q)) {
+  if (violation(ctx, cells, work) < v0 && keeps_valid(ctx, cells, scratch) && ctx.gates_accept(cells, q)) {
     if (k < 3) ctx.bc->commit(p, prim);
     ctx.gates_commit(cells, q);
     for (std::uint32_t c : cells)
@@ -111,12 +116,13 @@ bool try_repair_move(Context& ctx, PointId p, int k, Point3 x, double v0, std::v
 // violation's negative forward-difference gradient, then along +- each
 // tangent direction, from kRepairStep x the local length, halving. Returns
 // whether p moved.
-bool repair_point(Context& ctx, PointId p, std::vector<double>& q, std::vector<Point3>& scratch) {
+bool repair_point(Context& ctx, PointId p, std::vector<double>& q, std::vector<Point3>& scratch,
+                  std::uint64_t* work) {
   const int k = ctx.dof[p.idx];
   if (k == 0) return false;
   if (ctx.bc) ctx.bc->ensure(p);
   const auto cells = ctx.stencil.cells_of(p);
-  const double v0 = violation(ctx, cells);
+  const double v0 = violation(ctx, cells, work);
   if (!(v0 > 0)) return false;
   double vol = 0;
   for (std::uint32_t c : cells) vol += ctx.V0[c];
@@ -129,15 +135,15 @@ bool repair_point(Context& ctx, PointId p, std::vector<double>& q, std::vector<P
   const double h = 1e-4 * ell;
   for (int i = 0; i < k; ++i) {
     slot = o + h * B[i];
-    g += ((violation(ctx, cells) - v0) / h) * B[i];
+    g += ((violation(ctx, cells, work) - v0) / h) * B[i];
   }
   slot = o;
   const double gn = norm(g);
   double len = kRepairStep * ell;
   for (int hv = 0; hv <= kRepairHalvings; ++hv, len *= 0.5) {
-    if (gn > 0 && try_repair_move(ctx, p, k, o - (len / gn) * g, v0, q, scratch)) return true;
+    if (gn > 0 && try_repair_move(ctx, p, k, o - (len / gn) * g, v0, q, scratch, work)) return true;
     for (int d = 0; d < 2 * k; ++d)
-      if (try_repair_move(ctx, p, k, o + ((d & 1) ? -len : len) * B[d / 2], v0, q, scratch)) return true;
+      if (try_repair_move(ctx, p, k, o + ((d & 1) ? -len : len) * B[d / 2], v0, q, scratch, work)) return true;
   }
   return false;
 }
@@ -151,6 +157,8 @@ IterationRecord repair_foam(Context& ctx) {
   std::vector<Point3> scratch;
   std::vector<std::uint32_t> failing;
   ctx.foam_active = true;
+  std::uint64_t work = 0;
+  const double budget = kRepairBudget * static_cast<double>(ctx.stencil.point_cells.size());
   for (int round = 0; round < kRepairRounds; ++round) {
     // A new base where one passes with both centres now, then every verdict.
     choose_foam_bases(ctx.mesh, ctx.stencil, ctx.mesh.points, ctx.face_base);
@@ -164,9 +172,9 @@ IterationRecord repair_foam(Context& ctx) {
     std::uint64_t moved = 0;
     for (std::uint32_t c : failing)
       for (PointId p : ctx.stencil.points_of(c)) {
-        if (ctx.foam_ok[c]) break;
+        if (ctx.foam_ok[c] || static_cast<double>(work) > budget) break;
         ++counts.visited;
-        moved += repair_point(ctx, p, q, scratch);
+        moved += repair_point(ctx, p, q, scratch, &work);
       }
     counts.updates += moved;
     if (moved == 0) break;

@@ -761,8 +761,11 @@ void run_local(Context& ctx) {
   if (!untangle_only && prm.polish_sweeps > 0 && prm.max_iter > 0 && ctx.report->iterations.back().invalid == 0) {
     polish_worst(ctx, whole_passes(), solvers, sweep, last_change);
   }
-  // The cells failing OpenFOAM's checks (optim/foam_gate.h) get a repair descent, in one more record.
-  if (!untangle_only && prm.foam_gate && prm.max_iter > 0) {
+  // The cells failing OpenFOAM's checks (optim/foam_gate.h) get a repair
+  // descent, in one more record; not while cells are invalid (the split cuts
+  // and re-optimises them: on a sliver mesh's tangled dual the repair cost
+  // 4x the sweeps).
+  if (!untangle_only && prm.foam_gate && prm.max_iter > 0 && ctx.report->iterations.back().invalid == 0) {
     ctx.lap("iterations");
     const IterationRecord r = repair_foam(ctx);
     ctx.lap("foam_repair");

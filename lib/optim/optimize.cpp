@@ -209,6 +209,8 @@ OptimReport optimize(PolyMesh& mesh, const ClassifiedTetMesh* primal, const Opti
   if (params.method == OptimParams::Method::Global) optim_detail::run_global(ctx);
   rep.after = ctx.last_stats;
   rep.foam_failing_after = ctx.foam_failing();
+  for (std::uint32_t c = 0; c < ctx.foam_ok.size(); ++c)
+    if (!ctx.foam_ok[c]) rep.foam_failing_cells.push_back(c);
   optim_detail::list_worst_cells(ctx, rep);
   rep.invalid_after = static_cast<int>(rep.iterations.back().invalid);
   rep.seconds = ctx.seconds();
@@ -248,6 +250,9 @@ Json OptimReport::to_json() const {
   j.set("phases", std::move(ph));
   j.set("foam_failing_before", foam_failing_before);
   j.set("foam_failing_after", foam_failing_after);
+  Json fc = Json::array();  // the first kMaxWorstCells, for a reader to look at
+  for (std::size_t i = 0; i < foam_failing_cells.size() && i < kMaxWorstCells; ++i) fc.push(foam_failing_cells[i]);
+  j.set("foam_failing_cells", std::move(fc));
   j.set("cells_above_bound", cells_above_bound);
   Json w = Json::array();
   for (const auto& c : worst_cells) w.push(c.to_json());

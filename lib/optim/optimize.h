@@ -163,8 +163,12 @@ struct WorstCell {
 
 struct OptimReport {
   std::vector<IterationRecord> iterations;
-  // Cells failing the OpenFOAM gate (OptimParams::foam_gate) before and after.
+  // Cells failing the OpenFOAM gate (OptimParams::foam_gate) before and after,
+  // and the failing cells after the run (increasing): the cells a split
+  // would have to cut for OpenFOAM to find no wrongly oriented face pyramid
+  // or face tet.
   std::size_t foam_failing_before = 0, foam_failing_after = 0;
+  std::vector<std::uint32_t> foam_failing_cells;
   // The cells above kWorstBound after the run, worst first, at most kMaxWorstCells.
   static constexpr double kWorstBound = 10.0;
   static constexpr std::size_t kMaxWorstCells = 20;
