@@ -157,6 +157,7 @@ void Context::record(int iteration) {
   r.invalid = 0;
   for (std::uint8_t v : cell_valid) r.invalid += v == 0;
   last_stats = quality_stats(cell_quality, params.metric);
+  for (std::size_t c = 0; c < nc; ++c) last_stats.degenerate += cell_valid[c] && !std::isfinite(cell_quality[c]);
   // The cap of the next sweep's moves: the worst valid cell now.
   quality_cap = 0;
   for (std::size_t c = 0; c < nc; ++c)
