@@ -70,7 +70,7 @@ constexpr int kRepairHalvings = 8;
 constexpr int kRepairRounds = 8;
 // The work bound, in passes over every point's cells (cells evaluated by
 // the violation): the repair's time grows with the mesh and nothing else.
-constexpr double kRepairBudget = 8;
+constexpr double kRepairBudget = 40;
 
 // The summed OpenFOAM violation of the failing cells among `cells`; adds
 // the cells evaluated to *work.
