@@ -67,10 +67,10 @@ namespace {
 // length cbrt(mean V0 of p's cells), and the halvings tried per direction.
 constexpr double kRepairStep = 0.25;
 constexpr int kRepairHalvings = 8;
-constexpr int kRepairRounds = 8;
+constexpr int kRepairRounds = 20;
 // The work bound, in passes over every point's cells (cells evaluated by
 // the violation): the repair's time grows with the mesh and nothing else.
-constexpr double kRepairBudget = 40;
+constexpr double kRepairBudget = 120;
 
 // The summed OpenFOAM violation of the failing cells among `cells`; adds
 // the cells evaluated to *work.
