@@ -1,6 +1,7 @@
 // Shared state of one optimize() run (internal to lib/optim).
 #pragma once
 #include <chrono>
+#include <limits>
 #include <memory>
 #include <span>
 #include <vector>
@@ -76,6 +77,37 @@ struct Context {
   void refresh_cells(std::span<const std::uint32_t> cells);
   // Tangent basis of p (dof(p) orthonormal vectors).
   void basis(PointId p, Vec3 B[3]) const;
+
+  // The acceptance gates beside the exact star test (optim/gates.cpp), each
+  // a function of a cell's own points, so that the parallel sweeps may use
+  // them (the cells of one point are one thread's).
+  //  - OpenFOAM's checks (params.foam_gate, optim/foam_gate.h): a cell that
+  //    passes must keep passing (while foam_active). loop_face: per stencil loop its mesh face;
+  //    face_base: per mesh face its fan's base point; foam_ok: per cell.
+  //  - The worst cell never gets worse: a valid cell may not rise above
+  //    max(its quality before the move, quality_cap), quality_cap being the
+  //    highest quality among the valid cells at the last record.
+  //    cell_quality is kept current by every accepted move.
+  std::vector<std::uint32_t> loop_face;
+  std::vector<PointId> face_base;
+  std::vector<std::uint8_t> foam_ok;
+  double quality_cap = std::numeric_limits<double>::infinity();
+  // Whether gates_accept applies the OpenFOAM gate now: in the repair, and
+  // with params.foam_gate_sweeps in every move.
+  bool foam_active = true;
+  // The OpenFOAM gate's state for the mesh as it is (no-op without foam_gate).
+  void init_gates();
+  // After p's move (its cells `cells`, already passing the star test for the
+  // cells that were valid): whether both gates accept it. Fills q with the
+  // cells' qualities at the new position.
+  bool gates_accept(std::span<const std::uint32_t> cells, std::vector<double>& q) const;
+  // After an accepted move: the cells' qualities (q, from gates_accept) and
+  // the OpenFOAM verdicts of the cells that failed it.
+  void gates_commit(std::span<const std::uint32_t> cells, std::span<const double> q);
+  // The OpenFOAM verdicts of the given cells, afresh (after points were restored).
+  void refresh_foam(std::span<const std::uint32_t> cells);
+  // Number of cells failing the OpenFOAM gate.
+  std::size_t foam_failing() const;
 };
 
 void run_local(Context& ctx);
@@ -83,5 +115,10 @@ void run_local(Context& ctx);
 // scheme's polish; returns the visits and accepted steps.
 IterationRecord descend_worst(Context& ctx);
 void run_global(Context& ctx);
+// The cells above OptimReport::kWorstBound into rep.worst_cells (gates.cpp).
+void list_worst_cells(const Context& ctx, OptimReport& rep);
+// Moves the points of cells failing the OpenFOAM gate to make them pass
+// (gates.cpp); returns the visits and accepted steps.
+IterationRecord repair_foam(Context& ctx);
 
 }  // namespace polydual::optim_detail

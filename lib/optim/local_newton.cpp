@@ -124,11 +124,13 @@ class VertexNewton {
         const double ft = eval(xt);
         if (!(ft <= f0 + 1e-4 * alpha * slope)) continue;
         pts[p.idx] = xt;
-        ok = keeps_valid(cells);
+        // Exact: the star test; then the floating-point gates (context.h).
+        ok = keeps_valid(cells) && ctx_.gates_accept(cells, q_);
         if (!ok) pts[p.idx] = o;
       }
       if (!ok) break;
       if (k < 3) ctx_.bc->commit(p, prim);  // re-centre the parametric space
+      ctx_.gates_commit(cells, q_);
       for (std::uint32_t c : cells)
         if (!ctx_.cell_valid[c])
           ctx_.cell_valid[c] = star_shaped_verdict(ctx_.stencil, c, ctx_.mesh.points, true, scratch_).valid;
@@ -289,6 +291,7 @@ class VertexNewton {
   Context& ctx_;
   OptimParams::Derivatives der_ = OptimParams::Derivatives::Analytic;  // the current visit's model
   std::vector<Point3> scratch_;
+  std::vector<double> q_;  // the gates' qualities of the cells of the point being moved
   LaggedObjective lagged_;  // rebuilt at every Newton step of a Lagged visit
   PlanarityTerm planarity_;  // the loops around the visited point (planarity > 0)
 };
@@ -543,6 +546,7 @@ void polish_worst(Context& ctx, const Passes& passes, tbb::enumerable_thread_spe
     if (!(w < worst)) {
       for (const auto& [q, x] : saved) ctx.mesh.points[q] = x;
       ctx.refresh_cells(region);
+      ctx.refresh_foam(region);
     }
     if (!(w < worst * (1 - kPolishTol))) break;
     worst = w;
@@ -756,6 +760,16 @@ void run_local(Context& ctx) {
   }
   if (!untangle_only && prm.polish_sweeps > 0 && prm.max_iter > 0 && ctx.report->iterations.back().invalid == 0) {
     polish_worst(ctx, whole_passes(), solvers, sweep, last_change);
+  }
+  // The cells failing OpenFOAM's checks (optim/foam_gate.h) get a repair
+  // descent, in one more record; not while cells are invalid (the split cuts
+  // and re-optimises them: on a sliver mesh's tangled dual the repair cost
+  // 4x the sweeps).
+  if (!untangle_only && prm.foam_gate && prm.max_iter > 0 && ctx.report->iterations.back().invalid == 0) {
+    ctx.lap("iterations");
+    const IterationRecord r = repair_foam(ctx);
+    ctx.lap("foam_repair");
+    if (r.updates > 0) record_sweep(ctx, ctx.report->iterations.back().iteration + 1, r);
   }
 }
 

@@ -3,6 +3,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <limits>
@@ -156,6 +158,11 @@ void Context::record(int iteration) {
   r.invalid = 0;
   for (std::uint8_t v : cell_valid) r.invalid += v == 0;
   last_stats = quality_stats(cell_quality, params.metric);
+  for (std::size_t c = 0; c < nc; ++c) last_stats.degenerate += cell_valid[c] && !std::isfinite(cell_quality[c]);
+  // The cap of the next sweep's moves: the worst valid cell now.
+  quality_cap = 0;
+  for (std::size_t c = 0; c < nc; ++c)
+    if (cell_valid[c] && std::isfinite(cell_quality[c])) quality_cap = std::max(quality_cap, cell_quality[c]);
   r.min_quality = last_stats.min;
   r.mean_quality = last_stats.mean;
   r.max_quality = last_stats.max;
@@ -194,6 +201,8 @@ OptimReport optimize(PolyMesh& mesh, const ClassifiedTetMesh* primal, const Opti
   ctx.seed_cells = seed_cells;
   // Every run ends with a record() of the final state, so its statistics are
   // the report's "after" (no extra pass over the cells).
+  if (params.method == OptimParams::Method::Local || params.method == OptimParams::Method::Untangle) ctx.init_gates();
+  rep.foam_failing_before = rep.foam_failing_after = ctx.foam_failing();
   ctx.record(0);
   rep.before = ctx.last_stats;
   rep.invalid_before = static_cast<int>(rep.iterations.front().invalid);
@@ -201,6 +210,10 @@ OptimReport optimize(PolyMesh& mesh, const ClassifiedTetMesh* primal, const Opti
     optim_detail::run_local(ctx);
   if (params.method == OptimParams::Method::Global) optim_detail::run_global(ctx);
   rep.after = ctx.last_stats;
+  rep.foam_failing_after = ctx.foam_failing();
+  for (std::uint32_t c = 0; c < ctx.foam_ok.size(); ++c)
+    if (!ctx.foam_ok[c]) rep.foam_failing_cells.push_back(c);
+  optim_detail::list_worst_cells(ctx, rep);
   rep.invalid_after = static_cast<int>(rep.iterations.back().invalid);
   rep.seconds = ctx.seconds();
   return rep;
@@ -237,6 +250,33 @@ Json OptimReport::to_json() const {
   Json ph = Json::object();
   for (const auto& [name, t] : phases) ph.set(name, t);
   j.set("phases", std::move(ph));
+  j.set("foam_failing_before", foam_failing_before);
+  j.set("foam_failing_after", foam_failing_after);
+  Json fc = Json::array();  // the first kMaxWorstCells, for a reader to look at
+  for (std::size_t i = 0; i < foam_failing_cells.size() && i < kMaxWorstCells; ++i) fc.push(foam_failing_cells[i]);
+  j.set("foam_failing_cells", std::move(fc));
+  j.set("cells_above_bound", cells_above_bound);
+  Json w = Json::array();
+  for (const auto& c : worst_cells) w.push(c.to_json());
+  j.set("worst_cells", std::move(w));
+  return j;
+}
+
+Json WorstCell::to_json() const {
+  Json j = Json::object();
+  j.set("cell", cell);
+  j.set("quality", quality);
+  Json p = Json::array();
+  for (const auto& [q, m] : pinned) {
+    Json e = Json::object();
+    e.set("point", q.idx);
+    e.set("model_dim", static_cast<int>(m.dim));
+    e.set("model_tag", m.tag);
+    p.push(std::move(e));
+  }
+  j.set("pinned", std::move(p));
+  j.set("points_on_model_edges", on_edges);
+  j.set("points_on_model_faces", on_faces);
   return j;
 }
 
@@ -287,6 +327,8 @@ Json OptimParams::to_json() const {
   j.set("fd_step", fd_step);
   j.set("planarity", planarity);
   j.set("keep_boundary", keep_boundary);
+  j.set("foam_gate", foam_gate);
+  j.set("foam_gate_sweeps", foam_gate_sweeps);
   j.set("global_iterations_per_round", global_iterations_per_round);
   return j;
 }

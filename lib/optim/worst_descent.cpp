@@ -21,8 +21,9 @@
 // ends below the old m_p, itself at most the max) and no valid cell becomes
 // invalid.
 //
-// The rounds stop when no point of the worst cell moves (w is a local min-max
-// optimum of these moves), after worst_rounds rounds, or when the corners
+// When no point of the worst cell moves (w is a local min-max optimum of
+// these moves) w leaves the candidates and the next round takes the next
+// worst. The rounds stop when no candidate is left, after worst_rounds rounds, or when the corners
 // evaluated reach kWorkBudget times the corners of one pass over every point's
 // cells: the stage's time then grows with the mesh and nothing else (a coarse
 // mesh's few large cells made its rounds cost 40x its sweeps). Serial, in a fixed
@@ -65,6 +66,9 @@ class WorstCells {
   bool empty() const { return set_.empty(); }
   // The worst cell; UINT32_MAX if none is above the threshold.
   std::uint32_t worst() const { return set_.empty() ? UINT32_MAX : set_.begin()->second; }
+  // Cell c (quality q) leaves the set: no move of its points lowers it.
+  // It comes back if a neighbour's move changes its quality (update()).
+  void drop(std::uint32_t c, double q) { set_.erase({q, c}); }
   // Cell c's quality changed from `before` to `after`.
   void update(std::uint32_t c, double before, double after) {
     if (before > threshold_) set_.erase({before, c});
@@ -107,12 +111,14 @@ class WorstDescent {
     const double ell = std::cbrt(v0 / static_cast<double>(cells.size()));
     int accepted = 0;
     double alpha = kStartStep * ell;  // each step starts at twice the last accepted length
+    before_.clear();
+    for (std::uint32_t c : cells) before_.push_back(ctx_.cell_quality[c]);
     while (accepted < kStepsPerVisit && step(p, k, ell, cells, alpha)) {
       ++accepted;
       ctx_.touched[p.idx] = 1;
-      for (std::size_t i = 0; i < cells.size(); ++i) {  // q_: the accepted position's
-        worst.update(cells[i], ctx_.cell_quality[cells[i]], q_[i]);
-        ctx_.cell_quality[cells[i]] = q_[i];
+      for (std::size_t i = 0; i < cells.size(); ++i) {  // q_: the accepted position's (gates_commit stored them)
+        worst.update(cells[i], before_[i], q_[i]);
+        before_[i] = q_[i];
       }
       if (worst.worst() != w) break;  // w is no longer the worst
     }
@@ -177,8 +183,10 @@ class WorstDescent {
       if (k < 3) x = ctx_.bc->project(p, x, &prim);
       if (!(measure(p, x, cells) < m0)) continue;
       ctx_.mesh.points[p.idx] = x;
-      if (keeps_valid(cells)) {
+      // Exact: the star test; then the floating-point gates (context.h).
+      if (keeps_valid(cells) && ctx_.gates_accept(cells, qg_)) {
         if (k < 3) ctx_.bc->commit(p, prim);
+        ctx_.gates_commit(cells, qg_);
         alpha = std::min(2 * alpha, kStartStep * ell);
         return true;
       }
@@ -199,7 +207,7 @@ class WorstDescent {
 
   Context& ctx_;
   std::uint64_t work_ = 0;
-  std::vector<double> q_, q0_;
+  std::vector<double> q_, q0_, qg_, before_;
   std::vector<Point3> scratch_;
 };
 
@@ -214,7 +222,11 @@ IterationRecord descend_worst(Context& ctx) {
     if (std::isfinite(q)) { sum += q; max = std::max(max, q); ++n; }
   const double mean = n > 0 ? sum / static_cast<double>(n) : 0.0;
   if (ctx.params.worst_rounds <= 0 || !(max > mean)) return counts;
-  WorstCells worst(ctx.cell_quality, mean + kCandidateShare * (max - mean));
+  // A mesh whose worst cells are far above the bound takes every cell above
+  // the bound as a candidate: a cell that cannot improve (its points pinned
+  // at model vertices, say) is dropped, and the next worst gets the rounds.
+  const double threshold = std::min(mean + kCandidateShare * (max - mean), std::max(OptimReport::kWorstBound, mean));
+  WorstCells worst(ctx.cell_quality, threshold);
   WorstDescent descent(ctx);
   const double budget = kWorkBudget * static_cast<double>(descent.pass_cost());
   for (int round = 0; round < ctx.params.worst_rounds && !worst.empty() && double(descent.work()) < budget; ++round) {
@@ -226,7 +238,7 @@ IterationRecord descend_worst(Context& ctx) {
       if (worst.worst() != w) break;  // w is no longer the worst: the next round takes the new one
     }
     counts.updates += moved;
-    if (moved == 0) break;  // w is a local min-max optimum
+    if (moved == 0) worst.drop(w, ctx.cell_quality[w]);  // w is a local min-max optimum: the next worst
   }
   return counts;
 }

@@ -127,6 +127,7 @@ Json QualityStats::to_json() const {
   j.set("metric", metric_name(metric));
   j.set("cells", cells);
   j.set("tangled", tangled);
+  j.set("degenerate", degenerate);
   j.set("min", min);
   j.set("mean", mean);
   j.set("max", max);

@@ -29,6 +29,11 @@ struct QualityStats {
   Metric metric = Metric::Q1;
   std::size_t cells = 0;    // cells measured
   std::size_t tangled = 0;  // cells with a corner V <= 0 (excluded below)
+  // Of the tangled cells, those the exact star test calls valid: a corner
+  // whose volume rounds to <= 0 in doubles (kappa unbounded), not an
+  // inverted cell. Filled by callers that hold the exact verdicts (the
+  // optimiser's records); 0 otherwise.
+  std::size_t degenerate = 0;
   double min = 0, mean = 0, max = 0;  // over untangled cells, kappa/3 (>= 1)
   // histogram[i] counts untangled cells with bin_edges[i] <= q < bin_edges[i+1]
   // (the last bin is open).
