@@ -2,10 +2,12 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <set>
 #include <stdexcept>
+#include <tuple>
 
 #include "classify/classify.h"
 #include "core/error.h"
@@ -102,6 +104,54 @@ TEST(Classify, GivenTagsAreKeptAndDeterministic) {
   ASSERT_EQ(a.model().count(2), 6u);
   for (const ModelEntity& f : a.model().entities[2]) EXPECT_GT(f.tag, 100);
   for (std::size_t f = 0; f < a.num_triangles(); ++f) EXPECT_EQ(a.triangle_class(TriId(f)), b.triangle_class(TriId(f)));
+}
+
+// The model depends on the boundary (points, model-face triangles, tags), not
+// on the tets that fill the regions: the same soup with its tets in reverse
+// order (each rotated by an even permutation, so still positive) gives the
+// same model faces with the same tags and the same classified edges. The tet
+// order decides which tet is a fracture triangle's first, so it must decide
+// neither the sheet's orientation in the feature test nor the order in which
+// the pieces of a split marker get their tags.
+TEST(Classify, TetOrderDoesNotChangeTheModel) {
+  auto faces = [](const ClassifiedTetMesh& m) {
+    std::set<std::tuple<std::uint32_t, std::uint32_t, std::uint32_t, std::int32_t>> s;
+    for (std::size_t f = 0; f < m.num_triangles(); ++f) {
+      if (!m.on_model_face(TriId(f))) continue;
+      auto v = m.triangle(TriId(f));
+      std::sort(v.begin(), v.end());
+      s.insert({v[0].idx, v[1].idx, v[2].idx, m.triangle_class(TriId(f)).tag});
+    }
+    return s;
+  };
+  auto edges = [](const ClassifiedTetMesh& m) {
+    std::set<std::tuple<std::uint32_t, std::uint32_t, int, std::int32_t>> s;
+    for (std::size_t e = 0; e < m.num_edges(); ++e)
+      if (const ModelRef r = m.edge_class(EdgeId(e)); r.dim < 3)
+        s.insert({m.edge(EdgeId(e))[0].idx, m.edge(EdgeId(e))[1].idx, r.dim, r.tag});
+    return s;
+  };
+  std::size_t split_sheets = 0;  // meshes whose fracture marker became several model faces
+  for (std::uint64_t seed = 1; seed <= 30; ++seed) {
+    RandomMeshParams p;
+    p.seed = seed;
+    p.num_points = 150 + int(seed % 5) * 50;
+    p.network = seed % 2 == 0;
+    p.fracture = true;
+    const TetSoup soup = random_classified_mesh(p);
+    TetSoup reordered = soup;
+    std::reverse(reordered.tets.begin(), reordered.tets.end());
+    std::reverse(reordered.tet_region.begin(), reordered.tet_region.end());
+    for (auto& t : reordered.tets) t = {t[1], t[2], t[0], t[3]};
+    const ClassifiedTetMesh a = classify(soup), b = classify(reordered);
+    EXPECT_EQ(faces(b), faces(a)) << "seed " << seed;
+    EXPECT_EQ(edges(b), edges(a)) << "seed " << seed;
+    for (int d = 0; d <= 3; ++d) EXPECT_EQ(b.model().count(d), a.model().count(d)) << "seed " << seed;
+    std::size_t pieces = 0;
+    for (const ModelEntity& f : a.model().entities[2]) pieces += f.source_tag == kRandomFractureTag;
+    split_sheets += pieces > 1;
+  }
+  EXPECT_GE(split_sheets, 10u);  // not vacuous: the feature test split sheets
 }
 
 TEST(Classify, FullClassificationContradictionsAreReported) {

@@ -339,8 +339,9 @@ struct Cand {
 // The inference of the model's faces, edges and vertices (design §3) on a mesh
 // with its topology built, one phase per member function, in this order.
 // Everything works on sparse lists: the model-face triangles (a few per cent
-// of all triangles) and the candidate model edges, in increasing id order, so
-// the components and tags come out in the same order as a pass over all ids.
+// of all triangles, in the order of their sorted vertex ids: rank_by_vertices)
+// and the candidate model edges (in increasing id order, which is the order of
+// their vertex ids), so the components and tags depend on the boundary alone.
 class ModelInference {
  public:
   ModelInference(const TetSoup& soup, const ClassifyParams& params, const std::vector<std::uint32_t>& remap,
@@ -386,8 +387,10 @@ class ModelInference {
 
   void read_given_triangles();
   void find_model_face_triangles();
+  void rank_by_vertices();
   void find_candidate_edges();
   std::array<VertexId, 3> oriented_triangle(std::uint32_t r) const;
+  void orient_sheets();
   BendEdge bend_edge(std::size_t ci, std::uint32_t f1, std::uint32_t f2) const;
   void judge_bends();
   void group_model_faces();
@@ -447,6 +450,7 @@ class ModelInference {
   std::vector<char> is_me_;                  // per candidate: a model edge
   static constexpr std::uint8_t kNotTested = 0xff;
   std::vector<std::uint8_t> verdict_;        // per candidate: its FeatureVerdict, or kNotTested
+  std::vector<char> sheet_flip_;             // per rank in a one-region sheet: reversed (orient_sheets)
   std::vector<std::uint32_t> vme_off_, vme_; // vertex -> model edges (CSR of candidates)
   std::vector<std::int32_t> corner_given_;   // per vertex: given model-vertex tag or kNoTag
   std::vector<char> is_mv_;                  // per vertex: a model vertex
@@ -498,6 +502,32 @@ void ModelInference::find_model_face_triangles() {
     mf_.push_back(std::uint32_t(f));
     key_.push_back({given, r0, r1});
   }
+  rank_by_vertices();
+}
+
+// Ranks in the order of the triangles' sorted vertex ids, not of triangle ids:
+// triangles are numbered from the tets (first occurrence), vertices from the
+// points alone (spatial_order.h), so the model faces' components, which
+// piece of a marker keeps its tag and the fresh tags come out the same for
+// the same boundary whatever tets fill the regions (Delaunay flips renumber
+// them). Model edges and vertices are numbered by vertex ids already.
+void ModelInference::rank_by_vertices() {
+  std::vector<std::pair<std::array<std::uint32_t, 3>, std::uint32_t>> order(mf_.size());
+  for (std::uint32_t r = 0; r < mf_.size(); ++r) {
+    const auto v = m_.triangle(TriId(mf_[r]));
+    std::array<std::uint32_t, 3> s{v[0].idx, v[1].idx, v[2].idx};
+    std::sort(s.begin(), s.end());
+    order[r] = {s, r};
+  }
+  std::sort(order.begin(), order.end());
+  std::vector<std::uint32_t> mf(mf_.size());
+  std::vector<FaceKey> key(key_.size());
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    mf[k] = mf_[order[k].second];
+    key[k] = key_[order[k].second];
+  }
+  mf_ = std::move(mf);
+  key_ = std::move(key);
 }
 
 // Candidate edges: (edge, rank) incidences sorted by edge (ranks increasing
@@ -534,12 +564,69 @@ void ModelInference::find_candidate_edges() {
 }
 
 // The triangle of rank r, oriented so that its right-hand normal points out
-// of the first region of its key (for a fracture: out of its first tet), so
-// the triangles of one sheet are oriented alike.
+// of the first region of its key, or (a sheet inside one region: a fracture)
+// as orient_sheets() turned it, so the triangles of one sheet are oriented
+// alike whatever the tets around them.
 std::array<VertexId, 3> ModelInference::oriented_triangle(std::uint32_t r) const {
   std::array<VertexId, 3> v = m_.triangle(TriId(mf_[r]));
-  if (m_.region(m_.triangle_tet(TriId(mf_[r]), 0)) != key_[r].r0) std::swap(v[1], v[2]);
+  const bool out_of_r0 = m_.region(m_.triangle_tet(TriId(mf_[r]), 0)) == key_[r].r0;
+  if (key_[r].r0 == key_[r].r1 ? sheet_flip_[r] != 0 : !out_of_r0) std::swap(v[1], v[2]);
   return v;
+}
+
+// True when the triangle's boundary runs a -> b.
+bool runs_from_to(const std::array<VertexId, 3>& t, VertexId a, VertexId b) {
+  for (int k = 0; k < 3; ++k)
+    if (t[k] == a && t[(k + 1) % 3] == b) return true;
+  return false;
+}
+
+// A sheet inside one region has no "out of the first region": each triangle
+// is oriented out of its first tet, which is a matter of tet numbering (it
+// changes when flips renumber the tets). Its triangles are oriented alike by a
+// walk across the edges between exactly two of them from the first triangle
+// of each piece; a consistent orientation is unique up to reversing a whole
+// piece, which FE1's tests do not see (left and right swap and both negate).
+// Combinatorial, no geometry. On a non-orientable piece (a Möbius band) the
+// edges where the walk disagrees get no normals (bend_edge: no chain there).
+void ModelInference::orient_sheets() {
+  const std::size_t nmf = mf_.size();
+  sheet_flip_.assign(nmf, 0);
+  std::vector<std::uint32_t> off(nmf + 1, 0), adj;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+  for (std::uint32_t ci = 0; ci < cand_.size(); ++ci) {
+    const Cand& c = cand_[ci];
+    if (c.t1 - c.t0 != 2) continue;
+    const std::uint32_t f1 = et_[c.t0].r, f2 = et_[c.t0 + 1].r;
+    if (!(key_[f1] == key_[f2]) || key_[f1].r0 != key_[f1].r1) continue;
+    pairs.emplace_back(f1, ci);  // (rank, candidate): the walk's adjacency
+    pairs.emplace_back(f2, ci);
+  }
+  std::sort(pairs.begin(), pairs.end());
+  for (const auto& [f, ci] : pairs) ++off[f + 1];
+  std::partial_sum(off.begin(), off.end(), off.begin());
+  std::vector<char> seen(nmf, 0);
+  std::vector<std::uint32_t> stack;
+  for (std::uint32_t r0 = 0; r0 < nmf; ++r0) {
+    if (seen[r0] || off[r0] == off[r0 + 1]) continue;
+    seen[r0] = 1;
+    stack.assign(1, r0);
+    while (!stack.empty()) {
+      const std::uint32_t f = stack.back();
+      stack.pop_back();
+      for (std::uint32_t k = off[f]; k < off[f + 1]; ++k) {
+        const Cand& c = cand_[pairs[k].second];
+        const std::uint32_t g = et_[c.t0].r == f ? et_[c.t0 + 1].r : et_[c.t0].r;
+        if (seen[g]) continue;
+        const auto ev = m_.edge(EdgeId(c.e));
+        // g runs the edge the other way round from f once oriented.
+        sheet_flip_[g] = runs_from_to(oriented_triangle(f), ev[0], ev[1]) ==
+                         runs_from_to(m_.triangle(TriId(mf_[g])), ev[0], ev[1]);
+        seen[g] = 1;
+        stack.push_back(g);
+      }
+    }
+  }
 }
 
 // The bend at candidate ci (two model-face triangles of ranks f1, f2), with
@@ -552,11 +639,7 @@ BendEdge ModelInference::bend_edge(std::size_t ci, std::uint32_t f1, std::uint32
   b.dir = m_.point(ev[1]) - m_.point(ev[0]);
   b.bend = bend_angle(m_.point(ev[0]), m_.point(ev[1]), m_.point(third_vertex(m_, TriId(mf_[f1]), EdgeId(cand_[ci].e))),
                       m_.point(third_vertex(m_, TriId(mf_[f2]), EdgeId(cand_[ci].e))));
-  auto runs_ab = [&](const std::array<VertexId, 3>& t) {
-    for (int k = 0; k < 3; ++k)
-      if (t[k] == ev[0] && t[(k + 1) % 3] == ev[1]) return true;
-    return false;
-  };
+  auto runs_ab = [&](const std::array<VertexId, 3>& t) { return runs_from_to(t, ev[0], ev[1]); };
   auto unit_normal = [&](const std::array<VertexId, 3>& t) {
     const Vec3 n = cross(m_.point(t[1]) - m_.point(t[0]), m_.point(t[2]) - m_.point(t[0]));
     const double len = norm(n);
@@ -576,6 +659,7 @@ void ModelInference::judge_bends() {
   std::vector<BendEdge> bends;
   std::vector<std::uint32_t> which;
   verdict_.assign(cand_.size(), kNotTested);
+  orient_sheets();
   for (std::size_t ci = 0; ci < cand_.size(); ++ci) {
     const Cand& c = cand_[ci];
     if (c.t1 - c.t0 != 2) continue;

@@ -570,11 +570,12 @@ void add_cap(PolyMesh& pm, const std::vector<PointId>& loop, bool round_v, Point
 // one face [v, mid(v p_i), c_i, mid(v q_i), c_i+1, ..., c_j, mid(v q_j)] in the
 // run's orientation (the caps' own). A closed run whose triangles are all
 // coplanar is the one face [mid(v p_0), c_0, mid(v p_1), c_1, ...] round v
-// (v lies inside it: no point needed there). A run that leaves and re-enters
+// (v lies inside it: no point needed there), unless v is a model vertex where
+// faces touch without a model edge (touch_vertex): two groups. A run that leaves and re-enters
 // through one model edge (a pole on a seam: p_0 == q_last) is never one group,
 // whose loop would repeat that edge's midpoint: it is cut in two at its middle.
 void keep_cap_faces(const ClassifiedTetMesh& m, const DualPoints& d, VertexId v, std::span<const TriId> L,
-                    const CapRuns& runs, bool closed, std::vector<std::vector<PointId>>& faces) {
+                    const CapRuns& runs, bool closed, bool touch, std::vector<std::vector<PointId>>& faces) {
   const auto& seq = runs.seq;
   const std::size_t n = seq.size();
   faces.clear();
@@ -589,7 +590,8 @@ void keep_cap_faces(const ClassifiedTetMesh& m, const DualPoints& d, VertexId v,
     starts[i] = char(orient3d(m.point(v), m.point(a.p), m.point(a.q), m.point(seq[i].q)) != Sign::Zero);
     num_starts += starts[i];
   }
-  if (closed && num_starts == 0) {
+  if (closed && num_starts == 0 && touch && n >= 2) starts[0] = starts[n / 2] = 1;  // through a touch vertex
+  else if (closed && num_starts == 0) {
     faces.emplace_back();
     for (std::size_t i = 0; i < n; ++i) {
       faces.back().push_back(mid(i, seq[i].p));
@@ -606,6 +608,19 @@ void keep_cap_faces(const ClassifiedTetMesh& m, const DualPoints& d, VertexId v,
     faces.back().push_back(centre(i));
     faces.back().push_back(mid(i, seq[i].q));
   }
+}
+
+// A model vertex with a dual point where no run stops: model faces touch
+// there without a model edge (a fracture touching an interface at one vertex,
+// proofs/classification.md L11(d)). Every run round it is closed, so no cap
+// would pass through its point; make_caps cuts each closed run in two there
+// (add_cap with the loop's first triangle point as the pivot, keep_cap_faces
+// with two groups), as for a pole (proofs/dual_invariants.md L4).
+bool touch_vertex(const ClassifiedTetMesh& m, const DualPoints& d, VertexId v, const CapRuns& runs) {
+  if (m.vertex_class(v).dim != 0 || !d.vert_point[v.idx].valid()) return false;
+  for (std::uint32_t k = 0; k < runs.n; ++k)
+    if (runs.stopA[k] || runs.stopB[k]) return false;
+  return true;
 }
 
 // STEP 7: capping faces. Around each vertex v, walk the triangles of M ∪
@@ -625,12 +640,13 @@ void make_caps(const ClassifiedTetMesh& m, const CutTopology& ct, const VertexSi
     const std::span<const TriId> L = vt.of(vi);
     if (L.empty() || (!active.empty() && !active[vi])) continue;
     runs.load(m, ct, v, L);
+    const bool touch = touch_vertex(m, d, v, runs);
     for (std::uint32_t i0 = 0; i0 < runs.n; ++i0) {
       if (runs.visited[i0]) continue;
       const bool closed = runs.walk(i0);
       const bool tiled = keep && m.on_model_face(L[i0]);
-      const bool round_v = !tiled && cap_loop(m, d, v, L, runs, closed, loop);
-      if (tiled) keep_cap_faces(m, d, v, L, runs, closed, tiles);
+      const bool round_v = !tiled && (cap_loop(m, d, v, L, runs, closed, loop) || (closed && touch));
+      if (tiled) keep_cap_faces(m, d, v, L, runs, closed, touch, tiles);
       // The loop follows the orientation of L[i0] (the walk's `first`, whose
       // orientation every triangle of the walk inherits), so the owner is the
       // side of the tet that L[i0]'s stored orientation points out of.
