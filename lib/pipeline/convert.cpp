@@ -147,19 +147,12 @@ VertexCuts union_of_cuts(const SplitState& st, const ClassifiedTetMesh& m) {
   return with_whole_cuts(m, st.free_edge, st.whole);
 }
 
-// The cells holding a point pinned by one of `raised` (vertices newly cut
-// whole: their barycentric points are where the previous positions were
-// lost) or found invalid by `check`: the seeds of a round's re-optimisation.
-std::vector<char> round_seed(const ClassifiedTetMesh& m, std::span<const VertexId> raised, const PolyMesh& mesh,
-                             const CheckResult& check) {
-  std::vector<char> seed(mesh.num_cells(), 0);
-  for (std::size_t c = 0; c < seed.size() && c < check.verdicts.size(); ++c) seed[c] = !check.verdicts[c].valid;
+// The cells holding a point pinned by a whole-cut vertex (dual/cut_topology.h):
+// where the split changed the optimised mesh, the seed of its re-optimisation.
+std::vector<char> split_region(const ClassifiedTetMesh& m, const VertexCuts& cuts, const PolyMesh& mesh) {
+  std::vector<char> pin(mesh.num_points(), 0), seed(mesh.num_cells(), 0);
   if (mesh.point_origin.size() != mesh.num_points()) return std::vector<char>(mesh.num_cells(), 1);
-  VertexCuts newly;
-  newly.whole.assign(m.num_vertices(), 0);
-  for (VertexId v : raised) newly.whole[v.idx] = 1;
-  std::vector<char> pin(mesh.num_points(), 0);
-  for (std::size_t p = 0; p < pin.size(); ++p) pin[p] = char(pinned(m, &newly, mesh.point_origin[p]));
+  for (std::size_t p = 0; p < pin.size(); ++p) pin[p] = char(pinned(m, &cuts, mesh.point_origin[p]));
   CellPointScan points(mesh);
   for (std::size_t c = 0; c < seed.size(); ++c)
     for (PointId p : points(CellId(c)))
@@ -167,6 +160,19 @@ std::vector<char> round_seed(const ClassifiedTetMesh& m, std::span<const VertexI
         seed[c] = 1;
         break;
       }
+  return seed;
+}
+
+// The cells holding a point pinned by one of `raised` (vertices newly cut
+// whole: their barycentric points are where the previous positions were
+// lost) or found invalid by `check`: the seeds of a round's re-optimisation.
+std::vector<char> round_seed(const ClassifiedTetMesh& m, std::span<const VertexId> raised, const PolyMesh& mesh,
+                             const CheckResult& check) {
+  VertexCuts newly;
+  newly.whole.assign(m.num_vertices(), 0);
+  for (VertexId v : raised) newly.whole[v.idx] = 1;
+  std::vector<char> seed = split_region(m, newly, mesh);
+  for (std::size_t c = 0; c < seed.size() && c < check.verdicts.size(); ++c) seed[c] |= char(!check.verdicts[c].valid);
   return seed;
 }
 
@@ -341,22 +347,6 @@ Json split_causes(const ConvertResult& r, const SplitState& st) {
     corners += !r.check.verdicts[c].valid && st.cuts.is_whole(st.internal_of_input[r.mesh.cell_primal[c].idx]);
   j.set("still_invalid_whole", corners);
   return j;
-}
-
-// The cells holding a point pinned by a whole-cut vertex (dual/cut_topology.h):
-// where the split changed the optimised mesh, the seed of its re-optimisation.
-std::vector<char> split_region(const ClassifiedTetMesh& m, const VertexCuts& cuts, const PolyMesh& mesh) {
-  std::vector<char> pin(mesh.num_points(), 0), seed(mesh.num_cells(), 0);
-  if (mesh.point_origin.size() != mesh.num_points()) return std::vector<char>(mesh.num_cells(), 1);
-  for (std::size_t p = 0; p < pin.size(); ++p) pin[p] = char(pinned(m, &cuts, mesh.point_origin[p]));
-  CellPointScan points(mesh);
-  for (std::size_t c = 0; c < seed.size(); ++c)
-    for (PointId p : points(CellId(c)))
-      if (pin[p.idx]) {
-        seed[c] = 1;
-        break;
-      }
-  return seed;
 }
 
 // The rounds of the split loop after the first optimised dual (split/split.h):
