@@ -18,7 +18,7 @@ const CommandSpec kConvert{
     "every cell with the exact star-shaped test, untangles and smooths it, and writes\n"
     "VTU (VTK_POLYHEDRON) or an OpenFOAM case directory (OUT/constant/polyMesh).",
     1, 1,
-    {"-o", "--format", "--force", "--vtu-encoding", "--zlib", "--feature-angle", "--strong-angle", "--boundary", "--no-cleanup", "--collapse-tol", "--optimize", "--planarity", "--optimize-tets", "--tet-sweeps", "--tet-flips", "--tet-flip-rounds", "--no-split", "--split-rounds", "--require-valid", "--metric",
+    {"-o", "--format", "--force", "--vtu-encoding", "--zlib", "--feature-angle", "--strong-angle", "--boundary", "--no-cleanup", "--collapse-tol", "--optimize", "--planarity", "--optimize-tets", "--tet-sweeps", "--tet-flips", "--tet-flip-rounds", "--no-split", "--split-rounds", "--no-coarsen", "--require-valid", "--metric",
      "--derivatives", "--relaxation", "--tol", "--polish-sweeps", "--polish-share", "--worst-rounds", "--settle-move", "--max-iter", "--threads", "--json", "--quiet"}};
 
 const CommandSpec kCheck{

@@ -71,6 +71,10 @@ const std::vector<OptionDef> kTable = {
      "most optimised rounds cutting the vertices of cells still invalid whole (one convex cell per tet), each untangling around the cut; then a closure, bounded by the mesh, ends with every cell valid; 0: free-edge cuts only, no closure",
      [](const Settings& d) { return std::to_string(d.params.split.max_rounds); },
      [](Settings& s, const std::string& v) { s.params.split.max_rounds = std::stoi(v); }},
+    {"--no-coarsen", K::Flag, "", kNoRange, kNoRange,
+     "keep one cell per tet at every vertex the split cut whole, instead of merging those corners back while "
+     "every cell stays valid",
+     nullptr, [](Settings& s, const std::string&) { s.params.split.coarsen = false; }},
     {"--require-valid", K::Flag, "", kNoRange, kNoRange,
      "fail (exit 1, nothing written) if any cell is still invalid or the validation finds a defect (open cell, "
      "face error, missing model entity, volume mismatch), naming each cell",

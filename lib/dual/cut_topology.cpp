@@ -81,7 +81,7 @@ EdgeStop edge_stop(const ClassifiedTetMesh& m, const CutTopology& ct, EdgeId e, 
     const std::size_t nk = closed ? ring.size() : ring.size() + 1;
     for (std::size_t k = 0; k < nk; ++k) {
       const bool mf = m.on_model_face(tris[k]);
-      const bool in_a = mf || ct.cut_by(m, tris[k], a), in_b = mf || ct.cut_by(m, tris[k], b);
+      const bool in_a = mf || ct.position_for(m, tris[k], a), in_b = mf || ct.position_for(m, tris[k], b);
       p += in_a || in_b;
       ca += in_a;
       cb += in_b;
@@ -142,6 +142,25 @@ CutTopology cut_topology(const ClassifiedTetMesh& m, const VertexCuts* cuts) {
           if (t[i] == VertexId(v)) std::atomic_ref<std::uint8_t>(ct.tri_mask[f.idx]).fetch_or(std::uint8_t(1u << i), std::memory_order_relaxed);
       }
   });
+  // Every interior triangle through a whole vertex keeps its centre (bit
+  // kCentre: is_cut, but cut by none of its vertices unless its bit says
+  // so): the cells of a whole vertex are then unions of its barycentric
+  // corners, and its neighbours' cells do not depend on which of its
+  // triangles cut it (split/coarsen.h; proofs/dual_cuts.md C5). With every
+  // interior triangle cut (the fallback) the bit changes nothing.
+  if (cuts->any_whole())
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m.num_vertices(), 4096), [&](const auto& r) {
+      for (std::size_t v = r.begin(); v < r.end(); ++v) {
+        if (!cuts->is_whole(VertexId(v))) continue;
+        for (TetId t : m.vertex_tets(VertexId(v)))
+          for (int i = 0; i < 4; ++i) {
+            if (m.tet(t)[i] == VertexId(v)) continue;
+            const TriId f = m.tet_triangle(t, i);
+            if (!m.on_model_face(f))
+              std::atomic_ref<std::uint8_t>(ct.tri_mask[f.idx]).fetch_or(CutTopology::kCentre, std::memory_order_relaxed);
+          }
+      }
+    });
   // The edges of every cut triangle have a cut in their ring.
   ct.edge_bits.assign(m.num_edges(), 0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ct.tri_mask.size(), 16384), [&](const auto& r) {

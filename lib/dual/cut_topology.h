@@ -20,7 +20,10 @@ struct CutTopology {
   // Algorithm 1 runs exactly as without cuts.
   bool active = false;
   const VertexCuts* cuts = nullptr;
-  // Per triangle: bit i set iff triangle(f)[i] cuts f (f is in its cut set).
+  // Per triangle: bit i set iff triangle(f)[i] cuts f (f is in its cut set);
+  // kCentre: f is an interior triangle through a whole vertex, which keeps
+  // its centre whether or not it cuts (cut_by reads bits 0-2 only).
+  static constexpr std::uint8_t kCentre = 8;
   std::vector<std::uint8_t> tri_mask;
   // Per edge, bits: kStop, stop(e) (model edge, or the cut sets of its ends
   // disagree on its ring: proofs/dual_cuts.md, rule S); kRingCut, some
@@ -46,6 +49,13 @@ struct CutTopology {
     const auto t = m.triangle(f);
     return (mask & (unsigned(t[0] == v) | unsigned(t[1] == v) << 1 | unsigned(t[2] == v) << 2)) != 0;
   }
+  // Whether f ends the fans of v's edges, as a triangle that v cuts does:
+  // cut by v, or an interior triangle through v when v is whole (kCentre).
+  // A whole vertex's fan faces are therefore the same whichever of its
+  // triangles cut it, and so are its neighbours' cells (split/coarsen.h).
+  bool position_for(const ClassifiedTetMesh& m, TriId f, VertexId v) const {
+    return cut_by(m, f, v) || (active && (tri_mask[f.idx] & kCentre) != 0 && cuts->is_whole(v));
+  }
 };
 
 // Whether the point made from primal entity o (PolyMesh::point_origin) is
@@ -63,9 +73,10 @@ Point3 barycentre(const ClassifiedTetMesh& m, PointOrigin o);
 CutTopology cut_topology(const ClassifiedTetMesh& mesh, const VertexCuts* cuts);
 
 // A triangle of edge e = (a, b)'s ring cuts the ring (a position: the fan
-// faces of e end there) iff it is on a model face or in cut(a) or cut(b).
+// faces of e end there) iff it is on a model face or a position for a or b
+// (in cut(a) or cut(b), or interior through a whole a or b).
 inline bool ring_position(const ClassifiedTetMesh& m, const CutTopology& ct, TriId f, VertexId a, VertexId b) {
-  return m.on_model_face(f) || ct.cut_by(m, f, a) || ct.cut_by(m, f, b);
+  return m.on_model_face(f) || ct.position_for(m, f, a) || ct.position_for(m, f, b);
 }
 
 }  // namespace polydual

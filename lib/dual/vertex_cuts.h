@@ -23,7 +23,10 @@ struct VertexCuts {
   std::vector<std::uint32_t> off;
   std::vector<TriId> tri;
   // Per vertex (empty: none): v is cut whole, at every interior triangle of
-  // its star (split/cuts.h fallback_cuts), so it has one cell per tet. The
+  // its star (split/cuts.h fallback_cuts), so it has one cell per tet (or,
+  // once the split has coarsened it, split/coarsen.h, at the triangles
+  // between classes of tets: one cell per class, the union of its corners;
+  // every interior triangle through v keeps its centre either way). The
   // points of such a star (centres of the tets and triangles through v, the
   // midpoints of its edges, v itself) are placed at the barycentres of their
   // entities, never merged or collapsed, and every edge of v is a stop edge:

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <new>
+#include <stdexcept>
 
 #include <sys/resource.h>
 
@@ -14,6 +15,7 @@
 #include "dual/cut_topology.h"
 #include "io/output_guard.h"
 #include "io/read_tet_mesh.h"
+#include "split/coarsen.h"
 #include "split/cuts.h"
 #include "split/local_round.h"
 #include "split/recheck.h"
@@ -349,6 +351,56 @@ Json split_causes(const ConvertResult& r, const SplitState& st) {
   return j;
 }
 
+// The cells `check` found invalid, as (vertex, side): the primal vertex
+// (internal numbering) and the cell's rank among that vertex's cells.
+std::vector<BadCell> bad_cells(const SplitState& st, const PolyMesh& mesh, const CheckResult& check) {
+  std::vector<BadCell> bad;
+  std::uint32_t rank = 0;
+  for (std::size_t c = 0; c < check.verdicts.size(); ++c) {
+    rank = c > 0 && mesh.cell_primal[c] == mesh.cell_primal[c - 1] ? rank + 1 : 0;
+    if (!check.verdicts[c].valid) bad.push_back({st.internal_of_input[mesh.cell_primal[c].idx], rank});
+  }
+  return bad;
+}
+
+// Merges the barycentric corners of the whole vertices back while every cell
+// stays valid (split/coarsen.h). A trial is the dual rebuilt with the trial's
+// cuts, every point at its position in the last valid mesh (the base: r's at
+// first; merging keeps every point, dual/cut_topology.h kCentre), star-tested
+// exactly (cells equal to one of the base keep their verdict). A trial with
+// no invalid cell becomes the base; the last base replaces r's mesh, and the
+// split's final optimisation then smooths it. (Untangling each trial before
+// judging it kept 7-30 % more merges but cost up to 19 s on a 13k-tet TetGen
+// mesh against 0.5 s: measured.)
+Json coarsen_split(ConvertResult& r, SplitState& st, const PipelineParams& params) {
+  const Stopwatch clock;
+  VertexCuts base_cuts = st.cuts;
+  auto evaluate = [&](const VertexCuts& cuts) {
+    PolyMesh fresh = build_dual(r.primal, params.dual, nullptr, &cuts);
+    const std::vector<PointId> from_old = warm_start_by_rank(fresh, r.mesh);
+    CheckResult check = recheck_mesh(fresh, r.mesh, r.check, from_old);
+    std::vector<BadCell> bad = bad_cells(st, fresh, check);
+    if (check.invalid_cells == 0) {
+      r.mesh = std::move(fresh);
+      r.check = std::move(check);
+      base_cuts = cuts;
+    }
+    return bad;
+  };
+  const std::size_t cells_before = r.mesh.num_cells();
+  CoarsenStats cs;
+  const VertexCuts coarse = coarsen_whole_cuts(r.primal, st.free_edge, st.cuts.whole, evaluate, &cs);
+  Json j = cs.to_json();
+  j.set("cells_before", cells_before);
+  j.set("cells_after", r.mesh.num_cells());
+  // The coarsening ends on the cuts of its last valid trial (or where it began).
+  if (!(coarse.tri == base_cuts.tri) || !(coarse.whole == base_cuts.whole))
+    throw std::logic_error("coarsen_split: the coarsened cuts are not those of the last valid trial");
+  st.cuts = std::move(base_cuts);
+  j.set("seconds", clock.seconds());
+  return j;
+}
+
 // The rounds of the split loop after the first optimised dual (split/split.h):
 // the vertices of the cells still invalid are cut whole, the dual rebuilt and
 // checked, until no cell is invalid or every invalid cell is already a
@@ -445,6 +497,8 @@ void run_split(ConvertResult& r, SplitState& st, const PipelineParams& params, c
       st.cuts = std::move(best_cuts);
     }
     stats = Json::object();
+    if (params.split.coarsen && r.check.invalid_cells == 0 && st.cuts.any_whole())
+      stats.set("coarsen", coarsen_split(r, st, params));
     if (best_round > 0 && params.optim.method != OptimParams::Method::None) {
       const std::vector<char> seed = split_region(r.primal, st.cuts, r.mesh);
       const bool local = params.optim.method != OptimParams::Method::Global;

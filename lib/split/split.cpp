@@ -17,6 +17,7 @@ Json SplitParams::to_json() const {
   j.set("enabled", enabled);
   j.set("max_rounds", max_rounds);
   j.set("require_valid", require_valid);
+  j.set("coarsen", coarsen);
   return j;
 }
 

@@ -39,6 +39,10 @@ struct SplitParams {
   // Any cell still invalid at the end is an error (InputError naming each
   // cell, its primal vertex and its classification); nothing is written.
   bool require_valid = false;
+  // After the rounds, merge the barycentric corners of the whole vertices
+  // back while every cell stays valid (split/coarsen.h). Off
+  // (`--no-coarsen`): one cell per tet at every whole vertex.
+  bool coarsen = true;
   static constexpr int kMaxRounds = 100000;
 
   // Throws UsageError naming the bad field and its range.

@@ -1,0 +1,267 @@
+#include "split/coarsen.h"
+
+#include <algorithm>
+#include <utility>
+
+#include "split/cuts.h"
+
+namespace polydual {
+
+Json CoarsenStats::to_json() const {
+  Json j = Json::object();
+  j.set("passes", passes);
+  j.set("evaluations", evaluations);
+  j.set("merges_proposed", merges_proposed);
+  j.set("merges_kept", merges_kept);
+  j.set("reverts", reverts);
+  return j;
+}
+
+namespace {
+
+// Calls f(k, o, triangle) for each interior triangle through v on no model
+// face, once per pair of star tets k < o (star ranks) that share it.
+template <class F>
+void for_star_joins(const ClassifiedTetMesh& m, VertexId v, F&& f) {
+  const std::span<const TetId> tets = m.vertex_tets(v);
+  for (std::size_t k = 0; k < tets.size(); ++k) {
+    const int apex = m.local_index(tets[k], v);
+    for (int i = 0; i < 4; ++i) {
+      if (i == apex) continue;
+      const TetId o = m.tet_neighbor(tets[k], i);
+      if (!o.valid()) continue;
+      const TriId t = m.tet_triangle(tets[k], i);
+      if (m.on_model_face(t)) continue;
+      const std::uint32_t r = m.star_rank(v, o);
+      if (k < r) f(std::uint32_t(k), r, t);
+    }
+  }
+}
+
+std::uint32_t root(std::vector<std::uint32_t>& p, std::uint32_t x) {
+  while (p[x] != x) x = p[x] = p[p[x]];
+  return x;
+}
+
+// A whole vertex being coarsened: its classes as a union-find over its star
+// tets, and the pairs of star tets it may join (sharing an interior
+// triangle through v that no free-edge cut of v separates).
+struct Vertex {
+  VertexId v;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> joins;
+  std::vector<std::uint32_t> parent, saved;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> picks;      // this pass's merges (class roots)
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> forbidden;  // merges taken back (star tets)
+  int failures = 0;
+  bool done = false, proposing = false, partial = false;
+
+  std::vector<std::uint32_t> labels() {
+    std::vector<std::uint32_t> l(parent.size());
+    for (std::uint32_t k = 0; k < l.size(); ++k) l[k] = root(parent, k);
+    return l;
+  }
+};
+
+Vertex make_vertex(const ClassifiedTetMesh& m, const VertexCuts& free_edge, VertexId v) {
+  Vertex x;
+  x.v = v;
+  x.parent.resize(m.vertex_tets(v).size());
+  for (std::uint32_t k = 0; k < x.parent.size(); ++k) x.parent[k] = k;
+  for_star_joins(m, v, [&](std::uint32_t k, std::uint32_t o, TriId t) {
+    if (!free_edge.cuts(v, t)) x.joins.emplace_back(k, o);
+  });
+  return x;
+}
+
+// Whether merging the classes with roots ra and rb was taken back before.
+bool forbidden_pair(Vertex& x, std::uint32_t ra, std::uint32_t rb) {
+  for (const auto& [a, b] : x.forbidden) {
+    const std::uint32_t fa = root(x.parent, a), fb = root(x.parent, b);
+    if ((fa == ra && fb == rb) || (fa == rb && fb == ra)) return true;
+  }
+  return false;
+}
+
+// Proposes a matching of x's adjacent classes (the first pair of each class
+// in join order), at most (matching size >> failures) of them, at least one;
+// merges them. Returns the number of merges.
+std::size_t propose(Vertex& x) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> cand;
+  for (const auto& [a, b] : x.joins) {
+    const std::uint32_t ra = root(x.parent, a), rb = root(x.parent, b);
+    if (ra != rb && !forbidden_pair(x, ra, rb)) cand.emplace_back(std::min(ra, rb), std::max(ra, rb));
+  }
+  std::sort(cand.begin(), cand.end());
+  cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
+  std::vector<char> matched(x.parent.size(), 0);
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pick;
+  for (const auto& [a, b] : cand)
+    if (!matched[a] && !matched[b]) {
+      matched[a] = matched[b] = 1;
+      pick.emplace_back(a, b);
+    }
+  if (pick.empty()) return 0;
+  pick.resize(std::max<std::size_t>(1, pick.size() >> x.failures));
+  x.saved = x.parent;
+  x.picks = std::move(pick);
+  for (const auto& [a, b] : x.picks) x.parent[b] = a;
+  return x.picks.size();
+}
+
+VertexCuts cuts_of(const ClassifiedTetMesh& m, const VertexCuts& free_edge, std::span<const char> whole,
+                   std::vector<Vertex>& xs) {
+  std::vector<std::pair<VertexId, TriId>> pairs;
+  for (std::size_t v = 0; v + 1 < free_edge.off.size(); ++v)
+    for (TriId f : free_edge.of(VertexId(v))) pairs.emplace_back(VertexId(v), f);
+  for (Vertex& x : xs) {
+    const std::vector<std::uint32_t> l = x.labels();
+    label_cuts(m, x.v, l, pairs);
+  }
+  VertexCuts c = VertexCuts::from_pairs(m.num_vertices(), std::move(pairs));
+  c.whole.assign(whole.begin(), whole.end());
+  return c;
+}
+
+// Whether a vertex of x.v's star other than x.v is marked in bad.
+bool neighbour_bad(const ClassifiedTetMesh& m, const Vertex& x, const std::vector<char>& bad) {
+  for (TetId t : m.vertex_tets(x.v))
+    for (VertexId w : m.tet(t))
+      if (w != x.v && bad[w.idx]) return true;
+  return false;
+}
+
+void revert_all(Vertex& x, CoarsenStats& st) {
+  x.parent = x.saved;
+  x.picks.clear();
+  x.proposing = false;
+  x.done = ++x.failures >= kMaxFailures;
+  ++st.reverts;
+}
+
+// Takes back the merges of this pass that made the classes holding the bad
+// sides of x.v (sides of the trial's cuts) and forbids them.
+void revert_sides(const ClassifiedTetMesh& m, Vertex& x, const VertexCuts& cuts, std::span<const std::uint32_t> sides) {
+  const std::vector<std::uint32_t> side = star_sides(m, x.v, &cuts);
+  std::vector<char> bad_root(x.parent.size(), 0);
+  for (std::uint32_t k = 0; k < side.size(); ++k)
+    if (std::find(sides.begin(), sides.end(), side[k]) != sides.end()) bad_root[root(x.parent, k)] = 1;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> keep;
+  for (const auto& pr : x.picks) {
+    if (bad_root[root(x.parent, pr.first)]) x.forbidden.push_back(pr);
+    else keep.push_back(pr);
+  }
+  x.parent = x.saved;
+  x.picks = std::move(keep);
+  for (const auto& [a, b] : x.picks) x.parent[b] = a;
+  x.proposing = !x.picks.empty();
+  x.partial = true;
+}
+
+// Evaluates the proposals and takes merges back (coarsen.h) until no cell is
+// invalid.
+void settle(const ClassifiedTetMesh& m, const VertexCuts& free_edge, std::span<const char> whole,
+            std::vector<Vertex>& xs, const CutsEvaluator& evaluate, CoarsenStats& st) {
+  for (Vertex& x : xs) x.partial = false;
+  for (;;) {
+    const VertexCuts cuts = cuts_of(m, free_edge, whole, xs);
+    const std::vector<BadCell> cells = evaluate(cuts);
+    ++st.evaluations;
+    if (cells.empty()) return;
+    std::vector<char> bad(m.num_vertices(), 0);
+    for (const BadCell& c : cells) bad[c.v.idx] = 1;
+    bool acted = false;
+    for (Vertex& x : xs) {
+      if (!x.proposing) continue;
+      if (bad[x.v.idx] && !x.partial) {
+        std::vector<std::uint32_t> sides;
+        for (const BadCell& c : cells)
+          if (c.v == x.v) sides.push_back(c.side);
+        revert_sides(m, x, cuts, sides);
+      } else if (bad[x.v.idx] || neighbour_bad(m, x, bad)) {
+        revert_all(x, st);
+      } else {
+        continue;
+      }
+      acted = true;
+    }
+    if (!acted) {
+      bool any = false;
+      for (Vertex& x : xs)
+        if (x.proposing) revert_all(x, st), any = true;
+      if (!any) return;  // not reached: the cuts the pass started from were valid
+    }
+  }
+}
+
+}  // namespace
+
+void label_cuts(const ClassifiedTetMesh& m, VertexId v, std::span<const std::uint32_t> label,
+                std::vector<std::pair<VertexId, TriId>>& out) {
+  for_star_joins(m, v, [&](std::uint32_t k, std::uint32_t o, TriId t) {
+    if (label[k] != label[o]) out.emplace_back(v, t);
+  });
+}
+
+VertexCuts coarsen_whole_cuts(const ClassifiedTetMesh& m, const VertexCuts& free_edge, std::span<const char> whole,
+                              const CutsEvaluator& evaluate, CoarsenStats* stats, int max_passes) {
+  CoarsenStats st;
+  std::vector<Vertex> xs;
+  for (std::size_t v = 0; v < whole.size(); ++v)
+    if (whole[v]) xs.push_back(make_vertex(m, free_edge, VertexId(v)));
+  for (int pass = 0; pass < max_passes; ++pass) {
+    std::size_t proposers = 0;
+    for (Vertex& x : xs) {
+      x.proposing = false;
+      if (x.done) continue;
+      const std::size_t n = propose(x);
+      x.proposing = n > 0;
+      x.done = !x.proposing;
+      proposers += x.proposing;
+      st.merges_proposed += n;
+    }
+    if (proposers == 0) break;
+    ++st.passes;
+    settle(m, free_edge, whole, xs, evaluate, st);
+    for (const Vertex& x : xs)
+      if (x.proposing) st.merges_kept += x.picks.size();
+  }
+  if (stats) *stats = st;
+  return cuts_of(m, free_edge, whole, xs);
+}
+
+namespace {
+// Point indices sorted by (origin, index), and the origin key of each.
+std::vector<std::pair<std::uint64_t, std::uint32_t>> by_origin(const PolyMesh& pm) {
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> k(pm.points.size());
+  for (std::size_t i = 0; i < k.size(); ++i) {
+    const PointOrigin o = pm.point_origin[i];
+    k[i] = {(std::uint64_t(std::uint8_t(o.dim + 1)) << 32) | o.id, std::uint32_t(i)};
+  }
+  std::sort(k.begin(), k.end());
+  return k;
+}
+}  // namespace
+
+std::vector<PointId> warm_start_by_rank(PolyMesh& fresh, const PolyMesh& old) {
+  std::vector<PointId> from_old(fresh.points.size(), PointId::invalid());
+  if (fresh.point_origin.size() != fresh.points.size() || old.point_origin.size() != old.points.size())
+    return from_old;
+  const auto a = by_origin(fresh), b = by_origin(old);
+  std::size_t i = 0, j = 0;
+  while (i < a.size() && j < b.size()) {
+    const std::uint64_t key = std::min(a[i].first, b[j].first);
+    std::size_t i1 = i, j1 = j;
+    while (i1 < a.size() && a[i1].first == key) ++i1;
+    while (j1 < b.size() && b[j1].first == key) ++j1;
+    if (i1 - i == j1 - j && key >> 32 != 0)  // dim -1: no origin
+      for (std::size_t k = 0; k < i1 - i; ++k) {
+        fresh.points[a[i + k].second] = old.points[b[j + k].second];
+        from_old[a[i + k].second] = PointId(b[j + k].second);
+      }
+    i = i1;
+    j = j1;
+  }
+  return from_old;
+}
+
+}  // namespace polydual

@@ -1,0 +1,82 @@
+// Coarsening of whole cuts (design §8, "split as little as possible";
+// proofs/split.md L6). A vertex cut whole has one cell per tet of its star,
+// the barycentric corners: certain, but many cells. Once the split has a
+// valid mesh, adjacent corners of each whole vertex are merged back, in
+// passes, while the exact star test keeps every cell valid:
+//  - a vertex's cells are the classes of a label per tet of its star; it is
+//    cut exactly where two tets sharing an interior triangle through it have
+//    different labels (with the free-edge cuts kept), and it stays marked
+//    whole, so every point of its cells is still pinned at the barycentre of
+//    its primal entity (dual/vertex_cuts.h);
+//  - a pass proposes, per whole vertex, a matching of its adjacent classes
+//    (deterministic: by class representative) and merges the pairs;
+//  - the caller's evaluator rebuilds the dual with the proposed cuts and
+//    reports, exactly, which cells are invalid; a proposing vertex with an
+//    invalid cell first takes back only the merges that made that cell (and
+//    never proposes them again), then, if a cell of it is still invalid, all
+//    of the pass's merges, as does a proposing vertex next to a vertex with
+//    an invalid cell; the evaluation repeats until no cell is invalid
+//    (reverting every proposer gives back the valid cuts the pass started
+//    from).
+// A vertex whose proposal was wholly reverted proposes half as many merges
+// in the next pass and stops after kMaxFailures such reverts.
+#pragma once
+#include <cstddef>
+#include <functional>
+#include <span>
+#include <vector>
+
+#include "core/json.h"
+#include "dual/vertex_cuts.h"
+#include "mesh/classified_tet_mesh.h"
+#include "mesh/poly_mesh.h"
+
+namespace polydual {
+
+struct CoarsenStats {
+  std::size_t passes = 0;
+  std::size_t evaluations = 0;
+  std::size_t merges_proposed = 0;
+  std::size_t merges_kept = 0;
+  std::size_t reverts = 0;  // vertex proposals reverted
+  Json to_json() const;
+};
+
+// A cell found invalid: its primal vertex (m's numbering) and its rank among
+// that vertex's cells (the side, dual/sides.h: by first tet in star order).
+struct BadCell {
+  VertexId v;
+  std::uint32_t side;
+};
+// Given cuts, the cells that the exact star test of the dual built with
+// those cuts finds invalid.
+using CutsEvaluator = std::function<std::vector<BadCell>(const VertexCuts&)>;
+
+constexpr int kCoarsenMaxPasses = 32;
+constexpr int kMaxFailures = 4;
+
+// The coarsest cuts found: free_edge merged with the label cuts of the
+// vertices marked in `whole` (kept whole). `evaluate(start)` must report no
+// invalid cell for the cuts the coarsening starts from (with_whole_cuts of
+// free_edge and whole); the result then has none either.
+VertexCuts coarsen_whole_cuts(const ClassifiedTetMesh& m, const VertexCuts& free_edge, std::span<const char> whole,
+                              const CutsEvaluator& evaluate, CoarsenStats* stats = nullptr,
+                              int max_passes = kCoarsenMaxPasses);
+
+// The cuts of vertex v whose star tets (vertex_tets order) carry `label`:
+// every interior triangle through v, on no model face, whose two tets have
+// different labels, as (v, triangle) pairs appended to out.
+void label_cuts(const ClassifiedTetMesh& m, VertexId v, std::span<const std::uint32_t> label,
+                std::vector<std::pair<VertexId, TriId>>& out);
+
+// Moves every point of `fresh` to the position of its partner in `old`, the
+// partners being the k-th points (by index) of one primal origin in each
+// mesh when the origin has as many points in both (a primal entity makes
+// several points where it touches several sides: their order follows the
+// builder's side order, the same in both meshes where the cuts near them
+// agree); pinned points too. Returns fresh point -> old point (invalid: no
+// partner), one-to-one, for split/recheck.h. A wrong pairing can only cost
+// a merge: every trial is star-tested exactly.
+std::vector<PointId> warm_start_by_rank(PolyMesh& fresh, const PolyMesh& old);
+
+}  // namespace polydual
