@@ -95,9 +95,13 @@ TEST(IoMalformed, UnknownElementType) {
               HasSubstr("line 13: unknown element type 77"));
 }
 
-TEST(IoMalformed, HexIsUnsupported) {
-  EXPECT_THAT(msh(kMsh2Head + kMsh2Nodes + "$Elements\n1\n1 5 2 1 1 1 2 3 4 1 2 3 4\n$EndElements\n"),
-              HasSubstr("line 13: unsupported element type 5 (only tets)"));
+// A hexahedron is read (a mixed mesh); the tet path refuses it naming its cells.
+TEST(IoMalformed, HexIsReadAndRefusedByTheTetPath) {
+  const TetSoup soup = read_msh(kMsh2Head + kMsh2Nodes + "$Elements\n1\n1 5 2 1 1 1 2 3 4 1 2 3 4\n$EndElements\n", "t.msh");
+  ASSERT_EQ(soup.other_cells.size(), 1u);
+  EXPECT_EQ(soup.other_cells[0].type, CellType::Hex);
+  EXPECT_THAT(error_of([&] { classify(soup); }),
+              HasSubstr("t.msh: a mixed mesh (1 hexahedron): its dual is not implemented yet"));
 }
 
 TEST(IoMalformed, NonIntegerTag) {
