@@ -419,3 +419,22 @@ TEST(PrimalMesh, AgreesWithClassifiedTetMeshOnRandomMeshes) {
     }
   }
 }
+
+TEST(PrimalMesh, TaggedFaceOfNoCellIsAnErrorNamingIt) {
+  CellSoup s = one_cell(CellType::Prism);
+  s.points.push_back({5, 5, 5});
+  s.faces.push_back({{0, 1, 6, 0}, 3, 4});  // a triangle through a point no cell has
+  s.faces.push_back({{0, 1, 4, 3}, 4, 5});  // a real quadrangle of the prism
+  try {
+    build_primal(s);
+    FAIL() << "accepted a tagged face of no cell";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.place(), "face (1 2 7)");
+    EXPECT_NE(std::string(e.what()).find("tagged 4 is no face of any cell"), std::string::npos) << e.what();
+  }
+  s.faces.erase(s.faces.begin());
+  const PrimalMesh m = build_primal(s);
+  std::size_t tagged = 0;
+  for (std::size_t f = 0; f < m.num_faces(); ++f) tagged += m.face_class(PrimalFaceId(f)) == ModelRef{2, 5};
+  EXPECT_EQ(tagged, 1u);
+}

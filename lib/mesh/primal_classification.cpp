@@ -8,6 +8,7 @@
 // surface mesh the cells play the model faces' part.
 #include <algorithm>
 #include <map>
+#include <set>
 #include <unordered_map>
 
 #include "core/error.h"
@@ -33,6 +34,36 @@ struct FreshTags {
     return it->second;
   }
 };
+
+using FaceKey = std::array<std::uint32_t, 4>;
+
+// A tagged triangle or quadrangle of the source that is no face of a cell:
+// named by its vertices (1-based) and tag.
+[[noreturn]] void unmatched_face_error(const PrimalMesh& m, const CellSoup& soup,
+                                       const std::map<FaceKey, std::int32_t>& tag_of, std::size_t matched) {
+  std::set<FaceKey> faces;
+  for (std::size_t f = 0; f < m.num_faces(); ++f) {
+    FaceKey k{0xffffffffu, 0xffffffffu, 0xffffffffu, 0xffffffffu};
+    const auto fv = m.face_vertices(PrimalFaceId(f));
+    for (std::size_t i = 0; i < fv.size(); ++i) k[i] = fv[i].idx;
+    std::sort(k.begin(), k.end());
+    faces.insert(k);
+  }
+  for (const auto& [k, tag] : tag_of) {
+    if (faces.count(k)) continue;
+    std::string v;
+    for (std::uint32_t x : k)
+      if (x != 0xffffffffu) {
+        if (!v.empty()) v += ' ';
+        v += std::to_string(x + 1);
+      }
+    throw InputError(soup.source, "face (" + v + ")",
+                     "the " + std::string(k[3] == 0xffffffffu ? "triangle" : "quadrangle") + " (" + v + ") tagged " +
+                         std::to_string(tag) + " is no face of any cell (" + std::to_string(tag_of.size() - matched) +
+                         " such)");
+  }
+  throw InputError(soup.source, "", "tagged faces do not match the cells");
+}
 
 }  // namespace
 
@@ -64,9 +95,7 @@ void PrimalMeshBuilder::classify_faces(PrimalMesh& m, const CellSoup& soup) {
       m.face_class_[f] = {3, r0};
     }
   }
-  if (matched != tag_of.size())
-    throw InputError(soup.source, "", std::to_string(tag_of.size() - matched) +
-                                          " tagged triangles or quadrangles are no face of any cell");
+  if (matched != tag_of.size()) unmatched_face_error(m, soup, tag_of, matched);
 }
 
 // Per edge: the model-face (or, in a surface mesh, cell) tags around it and

@@ -14,7 +14,10 @@ constexpr std::uint32_t kPad = 0xffffffffu;
 
 std::string vertex_list(std::span<const VertexId> v) {
   std::string s = "(";
-  for (std::size_t i = 0; i < v.size(); ++i) s += (i ? " " : "") + std::to_string(v[i].idx + 1);
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    if (i) s += ' ';
+    s += std::to_string(v[i].idx + 1);
+  }
   return s + ")";
 }
 
