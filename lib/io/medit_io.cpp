@@ -248,7 +248,6 @@ struct Reader {
     // surface mesh, or not even Vertices) holds no mesh to convert.
     if (!have_dimension) throw InputError(cur.source(), "end of file", "missing 'Dimension 3'");
     if (soup.tets.empty() && soup.other_cells.empty()) no_tetrahedra();
-    if (soup.other_cells.empty()) soup.quads.clear();  // a tet mesh's quadrilaterals say nothing of it
     if (!vertices_line) throw InputError(cur.source(), "end of file", "missing Vertices section");
     soup.source = cur.source();
     merge_two_sided_triangles(soup);

@@ -115,6 +115,9 @@ std::string count_of(std::size_t n, const char* singular, const char* plural) {
 }
 
 void drop_unattached(TetSoup& soup, const ElementOrigins& origins) {
+  // No tet has a quadrangular face: a tet mesh's quadrangles (a file that
+  // also holds a surface mesh) are ignored, as readers always did.
+  if (!soup.tets.empty() && soup.other_cells.empty()) soup.quads.clear();
   std::vector<char> used(soup.points.size(), 0);
   for (const auto& t : soup.tets)
     for (std::uint32_t v : t)
