@@ -438,3 +438,30 @@ TEST(PrimalMesh, TaggedFaceOfNoCellIsAnErrorNamingIt) {
   for (std::size_t f = 0; f < m.num_faces(); ++f) tagged += m.face_class(PrimalFaceId(f)) == ModelRef{2, 5};
   EXPECT_EQ(tagged, 1u);
 }
+
+// Two hexahedra touching along one edge only: the edge has two chains (the
+// outside passes it twice), each one open hexahedron between boundary faces.
+TEST(PrimalMesh, HexahedraTouchingAlongAnEdgeGiveTwoChains) {
+  CellSoup s;
+  s.source = "<touching>";
+  for (double z : {0.0, 1.0})
+    for (auto [x, y] : {std::pair{0.0, 0.0}, {1.0, 0.0}, {1.0, 1.0}, {0.0, 1.0}, {2.0, 1.0}, {2.0, 2.0}, {1.0, 2.0}})
+      s.points.push_back({x, y, z});
+  // Bottom layer: 0..6, top layer: 7..13; (1, 1) is vertex 2 / 9.
+  const std::uint32_t a[8] = {0, 1, 2, 3, 7, 8, 9, 10}, b[8] = {2, 4, 5, 6, 9, 11, 12, 13};
+  s.add_cell(CellType::Hex, a, 1);
+  s.add_cell(CellType::Hex, b, 1);
+  const PrimalMesh m = build_primal(s);
+  walk(m);
+  const EdgeId e = m.find_edge(VertexId(2u), VertexId(9u));
+  ASSERT_TRUE(e.valid());
+  EXPECT_EQ(m.edge_cells(e).size(), 2u);
+  const auto chains = m.edge_chains(e);
+  ASSERT_EQ(chains.size(), 2u);
+  for (const EdgeChain& c : chains) {
+    EXPECT_FALSE(c.closed);
+    EXPECT_EQ(c.cells.size(), 1u);
+  }
+  EXPECT_NE(chains[0].cells[0], chains[1].cells[0]);
+  EXPECT_EQ(m.edge_class(e).dim, 1);  // four boundary faces meet there: a model edge
+}
