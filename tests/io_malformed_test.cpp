@@ -95,9 +95,13 @@ TEST(IoMalformed, UnknownElementType) {
               HasSubstr("line 13: unknown element type 77"));
 }
 
-TEST(IoMalformed, HexIsUnsupported) {
-  EXPECT_THAT(msh(kMsh2Head + kMsh2Nodes + "$Elements\n1\n1 5 2 1 1 1 2 3 4 1 2 3 4\n$EndElements\n"),
-              HasSubstr("line 13: unsupported element type 5 (only tets)"));
+// A hexahedron is read (a mixed mesh); the tet path refuses it naming its cells.
+TEST(IoMalformed, HexIsReadAndRefusedByTheTetPath) {
+  const TetSoup soup = read_msh(kMsh2Head + kMsh2Nodes + "$Elements\n1\n1 5 2 1 1 1 2 3 4 1 2 3 4\n$EndElements\n", "t.msh");
+  ASSERT_EQ(soup.other_cells.size(), 1u);
+  EXPECT_EQ(soup.other_cells[0].type, CellType::Hex);
+  EXPECT_THAT(error_of([&] { classify(soup); }),
+              HasSubstr("t.msh: a mixed mesh (1 hexahedron): its dual is not implemented yet"));
 }
 
 TEST(IoMalformed, NonIntegerTag) {
@@ -246,7 +250,7 @@ TEST(IoMalformed, MeditInfCoordinateAndShortRecord) {
 TEST(IoMalformed, MeditUnknownKeywordAndDimension) {
   EXPECT_THAT(medit(kMeditHead + "SolAtVertices\n4\n1 1\n"), HasSubstr("line 9: unknown keyword 'SolAtVertices'"));
   EXPECT_THAT(medit("MeshVersionFormatted 2\nDimension 2\n"), HasSubstr("line 2: Dimension 2 not supported"));
-  EXPECT_THAT(medit(kMeditHead + "Hexahedra\n0\n"), HasSubstr("unsupported element kind Hexahedra"));
+  EXPECT_THAT(medit(kMeditHead + "TetrahedraP2\n0\n"), HasSubstr("unsupported element kind TetrahedraP2"));
   EXPECT_THAT(medit(kMeditHead + "End\n"), HasSubstr("end of file: the file holds no tetrahedra (no Tetrahedra section)"));
 }
 
@@ -319,7 +323,8 @@ TEST(IoMalformed, VtuCompressedAndAppended) {
 }
 
 TEST(IoMalformed, VtuCellTypeAndIndex) {
-  EXPECT_THAT(vtu(vtu_piece("0 1 2 3", "12")), HasSubstr("cell 0: unsupported VTK cell type 12"));
+  EXPECT_THAT(vtu(vtu_piece("0 1 2 3", "42")), HasSubstr("cell 0: unsupported VTK cell type 42"));
+  EXPECT_THAT(vtu(vtu_piece("0 1 2 3", "12")), HasSubstr("cell 0: expected 8 node indices, got 4"));  // a hexahedron
   EXPECT_THAT(vtu(vtu_piece("0 1 2 4", "10")), HasSubstr("line 3: cell 0: node index 4 out of range (0..3)"));
   EXPECT_THAT(vtu(vtu_piece("0 1 2 3", "10", R"(<CellData><DataArray type="Int32" Name="region">1 2</DataArray></CellData>)")),
               HasSubstr("region array 'region' has 2 values for 1 cells"));

@@ -98,6 +98,15 @@ void check_coordinates(const TetSoup& s, const std::vector<char>& used) {
 
 std::vector<char> check_indices(const TetSoup& s) {
   const std::size_t nv = s.points.size();
+  if (is_mixed_or_surface(s))
+    throw InputError(s.source, "",
+                     "a " + std::string(s.other_cells.empty() ? "surface" : "mixed") + " mesh (" +
+                         describe_cell_counts(mixed_cell_counts(s)) +
+                         "): its dual is not implemented yet; only tetrahedral meshes convert (`polydual info` "
+                         "checks and counts its cells)");
+  if (!s.quads.empty())
+    throw InputError(s.source, "", std::to_string(s.quads.size()) +
+                                       " quadrangles on a tetrahedral mesh: no tetrahedron has a quadrangular face");
   if (s.tets.empty()) throw InputError(s.source, "", "mesh has no tetrahedra");
   if (s.tet_region.size() != s.tets.size())
     throw InputError(s.source, "", "region tags given for " + std::to_string(s.tet_region.size()) +

@@ -27,15 +27,14 @@ int skipped_record_size(const std::string& kw) {
   static const std::pair<const char*, int> kSkip[] = {
       {"requiredvertices", 1}, {"ridges", 1},    {"requirededges", 1}, {"requiredtriangles", 1},
       {"requiredtetrahedra", 1}, {"normals", 3}, {"tangents", 3},      {"normalatvertices", 2},
-      {"normalattrianglevertices", 3}, {"tangentatvertices", 2}, {"tangentatedges", 3},
-      {"quadrilaterals", 5}};
+      {"normalattrianglevertices", 3}, {"tangentatvertices", 2}, {"tangentatedges", 3}};
   for (const auto& [name, n] : kSkip)
     if (kw == name) return n;
   return 0;
 }
 
 bool is_unsupported_volume(const std::string& kw) {
-  return kw == "hexahedra" || kw == "prisms" || kw == "pyramids" || kw == "tetrahedrap2";
+  return kw == "tetrahedrap2";
 }
 
 // CGAL Mesh_3's output_to_medit with show_patches = false (its default)
@@ -148,6 +147,10 @@ struct Reader {
       triangles();
     } else if (kw == "edges") {
       edges();
+    } else if (kw == "hexahedra" || kw == "prisms" || kw == "pyramids") {
+      other_cells(kw == "hexahedra" ? CellType::Hex : kw == "prisms" ? CellType::Prism : CellType::Pyramid, word);
+    } else if (kw == "quadrilaterals") {
+      quadrilaterals();
     } else if (kw == "corners") {
       const std::int64_t n = count("Corners", 2);
       for (std::int64_t i = 0; i < n; ++i) {
@@ -158,7 +161,7 @@ struct Reader {
       const std::int64_t n = count(std::string(word).c_str(), 2 * size);
       for (std::int64_t i = 0; i < n * size; ++i) cur.real("value");
     } else if (is_unsupported_volume(kw)) {
-      cur.fail("unsupported element kind " + std::string(word) + " (only linear tetrahedra)");
+      cur.fail("unsupported element kind " + std::string(word) + " (only linear tetrahedra, pyramids, prisms and hexahedra)");
     } else {
       cur.fail("unknown keyword '" + io::quoted(word) + "'");
     }
@@ -194,6 +197,27 @@ struct Reader {
       soup.triangles.push_back(t);
     }
   }
+  // Medit's vertex order is Gmsh's for these cells, up to a mirror image that
+  // build_primal undoes (classify/classify_primal.h).
+  void other_cells(CellType type, std::string_view word) {
+    const int nv = descriptor(type).num_vertices;
+    const std::int64_t n = count(std::string(word).c_str(), 2 * (nv + 1));
+    for (std::int64_t i = 0; i < n; ++i) {
+      SoupCell c{type, {}, 0, 0};
+      for (int k = 0; k < nv; ++k) c.v[k] = vertex();
+      c.region = ref();
+      soup.other_cells.push_back(c);
+    }
+  }
+  void quadrilaterals() {
+    const std::int64_t n = count("Quadrilaterals", 10);
+    for (std::int64_t i = 0; i < n; ++i) {
+      TaggedQuad q;
+      for (auto& v : q.v) v = vertex();
+      q.tag = ref();
+      soup.quads.push_back(q);
+    }
+  }
   void edges() {
     const std::int64_t n = count("Edges", 6);
     for (std::int64_t i = 0; i < n; ++i) {
@@ -223,7 +247,7 @@ struct Reader {
     // A file without tets (an empty Tetrahedra section, none at all as in a
     // surface mesh, or not even Vertices) holds no mesh to convert.
     if (!have_dimension) throw InputError(cur.source(), "end of file", "missing 'Dimension 3'");
-    if (soup.tets.empty()) no_tetrahedra();
+    if (soup.tets.empty() && soup.other_cells.empty()) no_tetrahedra();
     if (!vertices_line) throw InputError(cur.source(), "end of file", "missing Vertices section");
     soup.source = cur.source();
     merge_two_sided_triangles(soup);

@@ -91,13 +91,27 @@ struct Reader {
     runs.push_back({dim, entity, group, at, at + 1});
   }
 
+  // Pyramids, prisms, hexahedra and quads (never in a homology chain's run).
+  bool add_mixed(Use use, std::int64_t id, const std::int64_t* nodes, std::int32_t tag) {
+    if (use == Use::quad) {
+      soup.quads.push_back({{node(id, nodes[0]), node(id, nodes[1]), node(id, nodes[2]), node(id, nodes[3])}, tag});
+      return true;
+    }
+    if (use != Use::pyramid && use != Use::prism && use != Use::hex) return false;
+    SoupCell c{use_cell_type(use), {}, tag, std::uint64_t(id)};
+    for (int k = 0; k < use_corners(use); ++k) c.v[k] = node(id, nodes[k]);
+    soup.other_cells.push_back(c);
+    return true;
+  }
+
   void add(Use use, std::int64_t type, std::int64_t id, const std::int64_t* nodes, const std::vector<std::int64_t>& tags) {
     if (use == Use::ignore) return;
     const std::int32_t tag = tag_of(tags);
-    const int dim = use == Use::tet ? 3 : use == Use::triangle ? 2 : use == Use::line ? 1 : 0;
+    const int dim = use_dim(use);
     if (!tags.empty() && tags[0] != 0) physicals[{dim, tag}].insert(tag);
-    note_run(dim, tags);
     max_order = std::max(max_order, element_order(type));
+    if (add_mixed(use, id, nodes, tag)) return;
+    note_run(dim, tags);
     switch (use) {
       case Use::tet:
         soup.tets.push_back({node(id, nodes[0]), node(id, nodes[1]), node(id, nodes[2]), node(id, nodes[3])});
@@ -118,6 +132,7 @@ struct Reader {
         soup.corners.push_back({node(id, nodes[0]), tag});
         origins.corner.push_back(elementary_of(tags));
         break;
+      case Use::pyramid: case Use::prism: case Use::hex: case Use::quad:  // add_mixed
       case Use::ignore: break;
     }
   }
@@ -258,7 +273,7 @@ struct Reader {
 
 }  // namespace
 
-TetSoup read_msh2(TextCursor& cur, bool binary, int minor) {
+TetSoup read_msh2(TextCursor& cur, bool binary, int minor, bool surfaces) {
   Reader r{cur, binary, {}, {}, {}, {}, {}, 1, minor, {}};
   r.soup.source = cur.source();
   const std::string elements_place = read_sections(cur, [&](std::string_view name) {
@@ -268,7 +283,7 @@ TetSoup read_msh2(TextCursor& cur, bool binary, int minor) {
     else return false;
     return true;
   });
-  require_tets(r.soup, cur, elements_place);
+  require_tets(r.soup, cur, elements_place, surfaces);
   r.finish();
   return std::move(r.soup);
 }

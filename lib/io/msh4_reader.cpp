@@ -267,10 +267,14 @@ struct Reader {
     return t;
   }
 
-  void add(Use use, const std::array<std::uint32_t, 4>& v, std::int32_t t, std::uint64_t id) {
+  void add(Use use, const std::array<std::uint32_t, 8>& v, std::int32_t t, std::uint64_t id) {
     switch (use) {
+      case Use::pyramid: case Use::prism: case Use::hex:
+        soup.other_cells.push_back({use_cell_type(use), v, t, id});
+        break;
+      case Use::quad: soup.quads.push_back({{v[0], v[1], v[2], v[3]}, t}); break;
       case Use::tet:
-        soup.tets.push_back(v);
+        soup.tets.push_back({v[0], v[1], v[2], v[3]});
         soup.tet_region.push_back(t);
         break;
       case Use::triangle: {
@@ -293,7 +297,7 @@ struct Reader {
     const std::int64_t n = count("the number of elements in a block");
     const Use use = element_use(cur, type);
     const int nn = node_count(type);
-    const int expected_dim = use == Use::tet ? 3 : use == Use::triangle ? 2 : use == Use::line ? 1 : 0;
+    const int expected_dim = use_dim(use);
     if (use != Use::ignore && expected_dim != dim)
       fail("element type " + std::to_string(type) + " in an entity block of dimension " + std::to_string(dim));
     if (n > nelements - seen)
@@ -302,7 +306,10 @@ struct Reader {
     cur.check_count(n, binary ? 8 * (1 + nn) : 2 * (1 + nn), "element");
     const Target t = use == Use::ignore ? Target{} : target(dim, entity);
     const bool keep = use != Use::ignore && t.kind == Target::keep;
-    if (keep && n > 0) {
+    const bool mixed = use == Use::pyramid || use == Use::prism || use == Use::hex || use == Use::quad;
+    if (keep && n > 0 && mixed) {  // never in a homology chain's run
+      with_elements[dim].insert(t.model);
+    } else if (keep && n > 0) {
       with_elements[dim].insert(t.model);
       max_order = std::max(max_order, element_order(type));
       const std::size_t at = dim == 3 ? soup.tets.size() : dim == 2 ? soup.triangles.size()
@@ -311,13 +318,14 @@ struct Reader {
     }
     if (use != Use::ignore && t.kind == Target::partition_boundary) boundary_elements += n;
     if (use != Use::ignore && t.kind == Target::ghost) ghost_elements += n;
-    std::array<std::uint32_t, 4> v{};
+    std::array<std::uint32_t, 8> v{};
+    const int corners = use_corners(use);
     for (std::int64_t e = 0; e < n; ++e) {
       const char* what = binary ? "the $Elements block (expected an element record)" : "element tag";
       const std::uint64_t id = tag(what);
       for (int k = 0; k < nn; ++k) {
         const std::uint64_t nt = tag(binary ? what : "node tag");
-        if (k < 4 && use != Use::ignore) v[k] = node(id, nt);
+        if (k < corners) v[k] = node(id, nt);
       }
       if (keep) add(use, v, t.tag, id);
     }
@@ -450,7 +458,7 @@ void Reader::finish() {
 
 }  // namespace
 
-TetSoup read_msh4(TextCursor& cur, bool binary) {
+TetSoup read_msh4(TextCursor& cur, bool binary, bool surfaces) {
   Reader r{cur, binary, {}, {}, {}, false, {}, {}, 0, false, {}, {}, 0, 0, 0, 1, {}};
   r.soup.source = cur.source();
   bool have_nodes = false;
@@ -470,7 +478,7 @@ TetSoup read_msh4(TextCursor& cur, bool binary) {
     }
     return true;
   });
-  require_tets(r.soup, cur, elements_place);
+  require_tets(r.soup, cur, elements_place, surfaces);
   r.finish();
   return std::move(r.soup);
 }

@@ -64,14 +64,22 @@ class NodeTags {
   std::unordered_map<std::uint64_t, std::uint32_t> sparse_;
 };
 
-// What the reader does with one Gmsh element type.
-enum class Use { tet, triangle, line, point, ignore };
+// What the reader does with one Gmsh element type. pyramid, prism, hex and
+// quad (a mixed or quadrangle mesh) go to TetSoup::other_cells / quads.
+enum class Use { tet, triangle, line, point, pyramid, prism, hex, quad, ignore };
+
+// The dimension of what a Use reads (-1 for ignore), and the number of
+// corner vertices kept (high-order elements list their corners first).
+int use_dim(Use u);
+int use_corners(Use u);
+// The cell type of a pyramid, prism or hex use.
+CellType use_cell_type(Use u);
 
 // Number of nodes of a Gmsh element type, or -1 when the type is unknown.
 int node_count(std::int64_t type);
 // Classifies the type, failing (at the cursor's place) for unknown types and
-// for 3D types other than tets. High-order tets, triangles and lines (Gmsh
-// lists their corner vertices first) are read by those corners.
+// for 3D types other than tets, pyramids, prisms and hexahedra. High-order
+// elements (Gmsh lists their corner vertices first) are read by those corners.
 Use element_use(const TextCursor& cur, std::int64_t type);
 // The polynomial order of a tet, triangle or line type (1 for linear ones).
 int element_order(std::int64_t type);
@@ -119,15 +127,20 @@ std::string read_sections(TextCursor& cur, ReadSection&& read) {
 // A file whose sections are present but hold no tet is empty as a tet mesh
 // (a surface mesh, or $Nodes and $Elements with no records): an error at
 // `elements_place`, before anything is dropped as unattached.
-void require_tets(const TetSoup& soup, const TextCursor& cur, const std::string& elements_place);
+// A mesh with pyramids, prisms or hexahedra passes (the tet path refuses it
+// later, naming its cells); with `surfaces`, so does a surface mesh of
+// triangles and quadrangles.
+void require_tets(const TetSoup& soup, const TextCursor& cur, const std::string& elements_place,
+                  bool surfaces = false);
 
 // Section loops after $MeshFormat (the cursor stands after $EndMeshFormat).
 // msh 2.0, 2.1 and 2.2 share their layout (Gmsh reads all three with one
 // reader); `minor` (0, 1 or 2) selects what differs: 2.0's $PhysicalNames
 // records have no dimension, and a third element tag is a partition before
 // 2.2 but a partition count in 2.2 (neither is read).
-TetSoup read_msh2(TextCursor& cur, bool binary, int minor);
-TetSoup read_msh4(TextCursor& cur, bool binary);
+// `surfaces`: a file with no volume cell is read as a surface mesh.
+TetSoup read_msh2(TextCursor& cur, bool binary, int minor, bool surfaces = false);
+TetSoup read_msh4(TextCursor& cur, bool binary, bool surfaces = false);
 
 // The name of a $PhysicalNames record (the rest of the line, between the
 // first and the last double quote); fails when it is not quoted.

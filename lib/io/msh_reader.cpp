@@ -45,10 +45,44 @@ Use element_use(const TextCursor& cur, std::int64_t type) {
     case 2: case 9: case 20: case 21: case 22: case 23: case 24: case 25: return Use::triangle;
     case 1: case 8: case 26: case 27: case 28: return Use::line;
     case 15: return Use::point;
+    case 7: case 14: case 19: return Use::pyramid;
+    case 6: case 13: case 18: return Use::prism;
+    case 5: case 12: case 17: case 92: case 93: return Use::hex;
+    case 3: case 10: case 16: return Use::quad;
     default: break;
   }
-  if (element_dim(type) == 3) fail("unsupported element type " + std::to_string(type) + " (only tets)");
+  if (element_dim(type) == 3)
+    fail("unsupported element type " + std::to_string(type) + " (only tetrahedra, pyramids, prisms and hexahedra)");
   return Use::ignore;
+}
+
+int use_dim(Use u) {
+  switch (u) {
+    case Use::tet: case Use::pyramid: case Use::prism: case Use::hex: return 3;
+    case Use::triangle: case Use::quad: return 2;
+    case Use::line: return 1;
+    case Use::point: return 0;
+    case Use::ignore: break;
+  }
+  return -1;
+}
+
+int use_corners(Use u) {
+  switch (u) {
+    case Use::tet: case Use::quad: return 4;
+    case Use::triangle: return 3;
+    case Use::line: return 2;
+    case Use::point: return 1;
+    case Use::pyramid: return 5;
+    case Use::prism: return 6;
+    case Use::hex: return 8;
+    case Use::ignore: break;
+  }
+  return 0;
+}
+
+CellType use_cell_type(Use u) {
+  return u == Use::pyramid ? CellType::Pyramid : u == Use::prism ? CellType::Prism : CellType::Hex;
 }
 
 std::string high_order_warning(const std::string& source, int max_order) {
@@ -78,8 +112,9 @@ std::string physical_name(TextCursor& cur) {
   return std::string(line.substr(first + 1, last - first - 1));
 }
 
-void require_tets(const TetSoup& soup, const TextCursor& cur, const std::string& elements_place) {
-  if (!soup.tets.empty()) return;
+void require_tets(const TetSoup& soup, const TextCursor& cur, const std::string& elements_place, bool surfaces) {
+  if (!soup.tets.empty() || !soup.other_cells.empty()) return;
+  if (surfaces && !(soup.triangles.empty() && soup.quads.empty())) return;
   const std::size_t others = soup.triangles.size() + soup.edges.size() + soup.corners.size();
   const std::string only = others ? ", only " + count_of(others, "triangle, line or point", "triangles, lines and points") : "";
   throw InputError(cur.source(), elements_place, "the file holds no tetrahedra ($Elements has none" + only + ")");
@@ -117,7 +152,7 @@ int version_tenths(std::string_view v) {
 }
 
 // $MeshFormat, then the sections of its version; the cursor names the source.
-TetSoup read_msh_from(io::TextCursor& cur) {
+TetSoup read_msh_from(io::TextCursor& cur, bool surfaces) {
   const std::string& source = cur.source();
   if (cur.at_end()) throw InputError(source, "", "the file is empty");
   const std::string_view first = cur.token("$MeshFormat");
@@ -141,22 +176,23 @@ TetSoup read_msh_from(io::TextCursor& cur) {
   }
   io::msh::expect_end(cur, "MeshFormat");
   cur.set_binary(binary);
-  TetSoup soup = tenths == 41 ? io::msh::read_msh4(cur, binary) : io::msh::read_msh2(cur, binary, tenths % 10);
+  TetSoup soup = tenths == 41 ? io::msh::read_msh4(cur, binary, surfaces)
+                                : io::msh::read_msh2(cur, binary, tenths % 10, surfaces);
   soup.source = source;
   return soup;
 }
 
 }  // namespace
 
-TetSoup read_msh(std::string_view bytes, const std::string& source) {
+TetSoup read_msh(std::string_view bytes, const std::string& source, bool surfaces) {
   io::TextCursor cur(bytes, source);
-  return read_msh_from(cur);
+  return read_msh_from(cur, surfaces);
 }
 
-TetSoup read_msh_file(const std::string& path) {
+TetSoup read_msh_file(const std::string& path, bool surfaces) {
   io::InputFile file(path);
   io::TextCursor cur(file);
-  return read_msh_from(cur);
+  return read_msh_from(cur, surfaces);
 }
 
 }  // namespace polydual

@@ -19,7 +19,7 @@
 // msh2: every tag is the physical tag if nonzero, else the elementary tag.
 // Both: $PhysicalNames and the physical tags become soup.groups; homology and
 // cohomology chains that Gmsh added to the mesh, and input not attached to the
-// tets, are dropped (io/unattached.h); other 3D element types are errors;
+// volume cells, are dropped (io/unattached.h); other 3D element types are errors;
 // other lower-dimensional types are ignored.
 #pragma once
 #include <string>
@@ -30,7 +30,9 @@
 namespace polydual {
 
 // Parses a whole .msh file held in memory; `source` names it in errors.
-TetSoup read_msh(std::string_view bytes, const std::string& source);
-TetSoup read_msh_file(const std::string& path);
+// With `surfaces`, a file with no volume cell is read as a surface mesh (its
+// triangles and quads); otherwise it holds no tetrahedra (an error).
+TetSoup read_msh(std::string_view bytes, const std::string& source, bool surfaces = false);
+TetSoup read_msh_file(const std::string& path, bool surfaces = false);
 
 }  // namespace polydual

@@ -115,14 +115,31 @@ std::string count_of(std::size_t n, const char* singular, const char* plural) {
 }
 
 void drop_unattached(TetSoup& soup, const ElementOrigins& origins) {
+  // No tet has a quadrangular face: a tet mesh's quadrangles (a file that
+  // also holds a surface mesh) are ignored, as readers always did.
+  if (!soup.tets.empty() && soup.other_cells.empty()) soup.quads.clear();
   std::vector<char> used(soup.points.size(), 0);
   for (const auto& t : soup.tets)
     for (std::uint32_t v : t)
       if (v < used.size()) used[v] = 1;
+  // The other volume cells attach as the tets do; a surface mesh (no volume
+  // cell) is its triangles and quadrangles.
+  for (const SoupCell& c : soup.other_cells)
+    for (int k = 0; k < descriptor(c.type).num_vertices; ++k)
+      if (c.v[k] < used.size()) used[c.v[k]] = 1;
+  if (soup.tets.empty() && soup.other_cells.empty()) {
+    for (const auto& t : soup.triangles)
+      for (std::uint32_t v : t.v)
+        if (v < used.size()) used[v] = 1;
+    for (const auto& q : soup.quads)
+      for (std::uint32_t v : q.v)
+        if (v < used.size()) used[v] = 1;
+  }
   auto is_used = [&](std::uint32_t v) { return v < used.size() && used[v]; };
   Counts n;
   std::array<std::set<std::int32_t>, 3> all;
   for (int d = 0; d < 3; ++d) all[d].insert(origins.declared[d].begin(), origins.declared[d].end());
+  for (const TaggedQuad& q : soup.quads) all[2].erase(q.tag);  // quadrangles are kept whole
   const std::size_t before = soup.triangles.size() + soup.edges.size() + soup.corners.size();
   const std::set<std::int32_t> kept2 = filter(soup.triangles, origins.triangle, all[2], [&](const TaggedTriangle& t) {
     const bool ok = is_used(t.v[0]) && is_used(t.v[1]) && is_used(t.v[2]);

@@ -21,7 +21,34 @@ using io::vtkxml::VtkXml;
 // DOLFIN/XDMF meshes.
 constexpr std::string_view kRegionNames[] = {"region", "material", "gmsh:physical", "medit:ref", "CellEntityIds"};
 
-constexpr std::int64_t kVertex = 1, kLine = 3, kTriangle = 5, kTetra = 10;
+constexpr std::int64_t kVertex = 1, kLine = 3, kTriangle = 5, kQuad = 9, kTetra = 10, kHex = 12, kWedge = 13,
+                       kPyramid = 14;
+
+// Node count of a VTK cell type that is read, else -1.
+std::int64_t nodes_of(std::int64_t type) {
+  switch (type) {
+    case kVertex: return 1;
+    case kLine: return 2;
+    case kTriangle: return 3;
+    case kQuad: case kTetra: return 4;
+    case kPyramid: return 5;
+    case kWedge: return 6;
+    case kHex: return 8;
+    default: return -1;
+  }
+}
+
+// A cell of a volume type other than the tet, or a quad, into the soup. VTK's
+// wedge is the mirror image of Gmsh's prism (its (0, 1, 2) points away from
+// (3, 4, 5)): reordered to mesh/cell_types.h's; the others share its order.
+void add_other(TetSoup& soup, std::int64_t type, const std::array<std::uint32_t, 8>& v, std::int32_t tag,
+               std::int64_t c) {
+  if (type == kQuad) return soup.quads.push_back({{v[0], v[1], v[2], v[3]}, tag});
+  SoupCell cell{type == kHex ? CellType::Hex : type == kWedge ? CellType::Prism : CellType::Pyramid, v, tag,
+                std::uint64_t(c + 1)};
+  if (type == kWedge) cell.v = {v[0], v[2], v[1], v[3], v[5], v[4], 0, 0};
+  soup.other_cells.push_back(cell);
+}
 
 // The arrays of the Piece the tet mesh is built from.
 struct Arrays {
@@ -93,13 +120,14 @@ TetSoup assemble(const VtkXml& f, const Arrays& r) {
     if (end < begin || end > static_cast<std::int64_t>(r.conn.size()))
       f.fail(r.off_pos, cell + ": offset " + std::to_string(end) + " out of range (" + std::to_string(begin) + ".." +
                             std::to_string(r.conn.size()) + ")");
-    const std::int64_t expect = type == kTetra ? 4 : type == kTriangle ? 3 : type == kLine ? 2 : type == kVertex ? 1 : -1;
+    const std::int64_t expect = nodes_of(type);
     if (expect < 0)
       f.fail(r.types_pos, cell + ": unsupported VTK cell type " + std::to_string(type) +
-                              " (tetra 10 and triangle 5 are read, vertex 1 and line 3 skipped)");
+                              " (tetra 10, pyramid 14, wedge 13, hexahedron 12, triangle 5 and quad 9 are read, "
+                              "vertex 1 and line 3 skipped)");
     if (end - begin != expect)
       f.fail(r.off_pos, cell + ": expected " + std::to_string(expect) + " node indices, got " + std::to_string(end - begin));
-    std::array<std::uint32_t, 4> v{};
+    std::array<std::uint32_t, 8> v{};
     for (std::int64_t k = 0; k < expect; ++k) {
       const std::int64_t idx = r.conn[begin + k];
       if (idx < 0 || idx >= r.npoints)
@@ -109,19 +137,22 @@ TetSoup assemble(const VtkXml& f, const Arrays& r) {
     }
     begin = end;
     if (type == kVertex || type == kLine) continue;
-    const std::int64_t tag = r.has_region ? r.region[c] : (type == kTetra ? 1 : 0);
+    const bool volume = type == kTetra || type == kPyramid || type == kWedge || type == kHex;
+    const std::int64_t tag = r.has_region ? r.region[c] : (volume ? 1 : 0);
     if (tag < std::numeric_limits<std::int32_t>::min() || tag > std::numeric_limits<std::int32_t>::max())
       f.fail(r.piece_pos, cell + ": region " + std::to_string(tag) + " does not fit in 32 bits");
     if (type == kTetra) {
-      soup.tets.push_back(v);
+      soup.tets.push_back({v[0], v[1], v[2], v[3]});
       soup.tet_region.push_back(static_cast<std::int32_t>(tag));
+    } else if (type != kTriangle) {
+      add_other(soup, type, v, static_cast<std::int32_t>(tag), c);
     } else {
       const std::array<std::uint32_t, 3> tri{v[0], v[1], v[2]};
       if (const std::string bad = io::repeated_vertex(tri, "triangle"); !bad.empty()) f.fail(r.conn_pos, cell + ": " + bad);
       soup.triangles.push_back({tri, static_cast<std::int32_t>(tag)});
     }
   }
-  if (soup.tets.empty())
+  if (soup.tets.empty() && soup.other_cells.empty())
     f.fail(r.piece_pos, "the file holds no tetrahedra (" +
                             (r.ncells ? "none of its " + std::to_string(r.ncells) + " cells is a tetra"
                                       : std::string("NumberOfCells is 0")) + ")");

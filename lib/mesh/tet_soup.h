@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/vec3.h"
+#include "mesh/cell_types.h"
 
 namespace polydual {
 
@@ -19,6 +20,18 @@ struct TaggedTriangle {
 struct TaggedEdge {
   std::array<std::uint32_t, 2> v{};
   std::int32_t tag = 0;  // model edge tag
+};
+struct TaggedQuad {
+  std::array<std::uint32_t, 4> v{};
+  std::int32_t tag = 0;  // model face tag (a surface's tag in a surface mesh)
+};
+// A volume cell other than a tet (pyramid, prism, hexahedron), local order of
+// mesh/cell_types.h; unused slots of v are 0.
+struct SoupCell {
+  CellType type = CellType::Hex;
+  std::array<std::uint32_t, 8> v{};
+  std::int32_t region = 0;
+  std::uint64_t element = 0;  // the file's element number, 0 when unknown
 };
 struct TaggedVertex {
   std::uint32_t v = 0;
@@ -59,6 +72,12 @@ struct TetSoup {
   std::vector<TaggedTriangle> triangles;
   std::vector<TaggedEdge> edges;
   std::vector<TaggedVertex> corners;
+  // A mixed mesh's other volume cells and its quadrangles (boundary or
+  // surface elements). The tet path (classify, ClassifiedTetMesh) refuses a
+  // soup that holds any (mixed_cell_counts below); mesh/cell_soup.h takes
+  // them to the primal of any cell type.
+  std::vector<SoupCell> other_cells;
+  std::vector<TaggedQuad> quads;
   // True when the source classifies every boundary/interface entity (Gmsh msh4
   // with $Entities): classify() then checks the given classification instead of
   // inferring it, and reports contradictions.
@@ -70,5 +89,15 @@ struct TetSoup {
   // Physical groups, sorted by (dim, tag).
   std::vector<NamedGroup> groups;
 };
+
+// Per CellType (index = the enum's value): how many cells of each type the
+// soup holds, counting tets, other cells, and (for a soup with no volume
+// cell, a surface mesh) triangles and quads.
+std::array<std::size_t, kNumCellTypes> mixed_cell_counts(const TetSoup& soup);
+// True when the soup is not a plain tet mesh (other cells, or a surface mesh
+// of triangles and quads with no tet).
+bool is_mixed_or_surface(const TetSoup& soup);
+// "12 tetrahedra, 30 prisms, 4 pyramids": the nonzero counts, in type order.
+std::string describe_cell_counts(const std::array<std::size_t, kNumCellTypes>& counts);
 
 }  // namespace polydual

@@ -1,0 +1,75 @@
+// Exact orientation of mixed cells, then PrimalMeshBuilder.
+#include "classify/classify_primal.h"
+
+#include "core/error.h"
+#include "predicates/predicates.h"
+
+namespace polydual {
+namespace {
+
+// +1: every corner tet positive; -1: every one negative; 0 otherwise (a zero
+// or mixed sign: degenerate or twisted). EXACT (orient3d). `corner` receives
+// the first corner that is neither.
+int cell_orientation(const CellSoup& s, std::size_t c, int& corner) {
+  const CellDescriptor& d = descriptor(s.cell_type[c]);
+  const auto v = s.cell(c);
+  int pos = 0, neg = 0;
+  corner = -1;
+  for (int k = 0; k < d.num_corners; ++k) {
+    const auto& q = d.corners[k];
+    const Sign o = orient3d(s.points[v[q[0]]], s.points[v[q[1]]], s.points[v[q[2]]], s.points[v[q[3]]]);
+    pos += o == Sign::Positive;
+    neg += o == Sign::Negative;
+    if (o != Sign::Positive && corner < 0) corner = k;
+  }
+  return pos == d.num_corners ? 1 : neg == d.num_corners ? -1 : 0;
+}
+
+void mirror(CellSoup& s, std::size_t c) {
+  const CellDescriptor& d = descriptor(s.cell_type[c]);
+  std::uint32_t* v = s.cell_vertex.data() + s.cell_offset[c];
+  std::array<std::uint32_t, 8> old{};
+  std::copy(v, v + d.num_vertices, old.begin());
+  for (int i = 0; i < d.num_vertices; ++i) v[i] = old[d.mirror[i]];
+}
+
+void orient_cells(CellSoup& s, std::vector<std::string>* warnings) {
+  std::array<std::size_t, kNumCellTypes> total{}, inverted{};
+  std::array<std::size_t, kNumCellTypes> first_inverted{};
+  for (std::size_t c = 0; c < s.num_cells(); ++c) {
+    const std::size_t t = std::size_t(s.cell_type[c]);
+    if (descriptor(s.cell_type[c]).dim != 3) continue;
+    int corner = -1;
+    const int o = cell_orientation(s, c, corner);
+    if (o == 0)
+      throw InputError(s.source, cell_place(s, c),
+                       cell_place(s, c) + " is degenerate or twisted (its corner tet at local vertex " +
+                           std::to_string(int(descriptor(s.cell_type[c]).corners[corner][0])) +
+                           " is not positively oriented while others are, or has zero volume)");
+    if (o < 0 && inverted[t]++ == 0) first_inverted[t] = c;
+    ++total[t];
+  }
+  for (int t = 0; t < kNumCellTypes; ++t) {
+    if (inverted[t] == 0) continue;
+    if (inverted[t] != total[t])
+      throw InputError(s.source, cell_place(s, first_inverted[t]),
+                       cell_place(s, first_inverted[t]) + " is inverted (negative orientation) while " +
+                           std::to_string(total[t] - inverted[t]) + " " + std::string(descriptor(CellType(t)).plural) +
+                           " are positive");
+    for (std::size_t c = 0; c < s.num_cells(); ++c)
+      if (int(s.cell_type[c]) == t) mirror(s, c);
+    if (warnings)
+      warnings->push_back(s.source + ": all " + std::to_string(total[t]) + " " +
+                          std::string(descriptor(CellType(t)).plural) +
+                          " are negatively oriented (the mirror convention); reordered");
+  }
+}
+
+}  // namespace
+
+PrimalMesh build_primal(CellSoup soup, std::vector<std::string>* warnings) {
+  orient_cells(soup, warnings);
+  return PrimalMeshBuilder::build(soup);
+}
+
+}  // namespace polydual
