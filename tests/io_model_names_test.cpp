@@ -5,7 +5,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
+#include <map>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -13,7 +15,9 @@
 #include <string>
 #include <unistd.h>
 
+#include "classify/classify.h"
 #include "io/foam_writer.h"
+#include "io/read_tet_mesh.h"
 #include "io/vtu_poly_reader.h"
 #include "io/write_poly_mesh.h"
 #include "pipeline/convert.h"
@@ -63,9 +67,9 @@ Physical Surface("wall") = {wall()};
 Physical Surface("inlet face") = {inlet()};
 )";
 
-std::string gmsh_model(const fs::path& dir, const std::string& format, bool named) {
+std::string gmsh_model(const fs::path& dir, const std::string& format, bool named, const std::string& extra = "") {
   const fs::path geo = dir / (std::string(named ? "named" : "plain") + ".geo");
-  std::ofstream(geo) << kGeo << (named ? kGroups : "");
+  std::ofstream(geo) << kGeo << (named ? kGroups : "") << extra;
   const std::string msh = (dir / (geo.stem().string() + "_" + format + ".msh")).string();
   const std::string cmd = "gmsh -3 '" + geo.string() + "' -format " + format + " -o '" + msh + "' > /dev/null 2>&1";
   EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
@@ -175,6 +179,34 @@ TEST(ModelNames, SanitisedUniqueWords) {
   EXPECT_TRUE(patches.count("a_b") && patches.count("a_b_2") && patches.count("_2nd")) << testing::PrintToString(patches);
   EXPECT_EQ(rep.patches, faces.size() - 1);  // tags[2] and tags[3] share "_2nd"
   EXPECT_TRUE(entries(dir / "case/constant/polyMesh/cellZones").count("x_y"));
+}
+
+// A volume in two physical groups (msh 4.1 lists both tags on the entity):
+// its model region carries both groups' tags, and the first name.
+TEST(ModelNames, EntityCarriesAllItsPhysicalGroups) {
+  if (!have("gmsh")) GTEST_SKIP() << "gmsh is not installed";
+  const fs::path dir = scratch() / "two_groups";
+  fs::create_directories(dir);
+  const TetSoup soup = read_tet_mesh(gmsh_model(dir, "msh41", true, "Physical Volume(\"hard\") = {steel()};\n"));
+  std::map<std::string, std::int32_t> tag_of;
+  for (const NamedGroup& g : soup.groups)
+    if (g.dim == 3) tag_of[g.name] = g.tag;
+  ASSERT_TRUE(tag_of.count("steel") && tag_of.count("hard"));
+  const ClassifiedTetMesh m = classify(soup);
+  std::size_t seen = 0;
+  for (const ModelEntity& r : m.model().entities[3]) {
+    if (r.name == "steel") {
+      ++seen;
+      std::vector<std::int32_t> both{tag_of["steel"], tag_of["hard"]};
+      std::sort(both.begin(), both.end());
+      EXPECT_EQ(r.groups, both);
+    } else {
+      EXPECT_EQ(r.groups, (std::vector<std::int32_t>{7}));  // the unnamed Physical Volume(7)
+    }
+  }
+  EXPECT_EQ(seen, 1u);
+  for (const ModelEntity& f : m.model().entities[2])
+    if (f.name == "wall") EXPECT_EQ(f.groups.size(), 1u);
 }
 
 }  // namespace
