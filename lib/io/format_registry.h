@@ -41,8 +41,6 @@ class PolyWriter {
   virtual std::string_view extension() const = 0;
   virtual OutputKind output_kind() const = 0;
   virtual std::string_view help() const = 0;  // one line: what is written
-  // Whether the context's cell fields are written (else they are dropped).
-  virtual bool writes_cell_fields() const = 0;
   // Writes atomically (no half-written output); adds the writer's own
   // fields to `record` (which holds "path" and "format").
   virtual void write(const PolyMesh& mesh, const std::string& path, const WriteContext& ctx,

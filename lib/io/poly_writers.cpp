@@ -19,7 +19,6 @@ class VtuPolyWriter final : public PolyWriter {
   std::string_view extension() const override { return ".vtu"; }
   OutputKind output_kind() const override { return OutputKind::File; }
   std::string_view help() const override { return "VTK XML file of VTK_POLYHEDRON cells (*.vtu)"; }
-  bool writes_cell_fields() const override { return true; }
   void write(const PolyMesh& mesh, const std::string& path, const WriteContext& ctx, Json&) const override {
     write_vtu_poly(mesh, path, ctx.cell_fields, ctx.options.vtu, ctx.names);
   }
@@ -33,7 +32,6 @@ class FoamPolyWriter final : public PolyWriter {
   std::string_view help() const override {
     return "OpenFOAM case directory, OUT/constant/polyMesh (OUT without an extension)";
   }
-  bool writes_cell_fields() const override { return false; }
   void write(const PolyMesh& mesh, const std::string& path, const WriteContext& ctx, Json& record) const override {
     record.set("foam", write_foam(mesh, path, ctx.options.foam, ctx.names).to_json());
   }

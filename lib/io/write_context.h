@@ -25,7 +25,7 @@ ModelNames model_names(const ModelTopology& model);
 
 struct WriteContext {
   PolyWriteOptions options;
-  std::vector<CellField> cell_fields;  // written by formats that take cell data
+  std::vector<CellField> cell_fields;  // written by formats that take cell data (VTU)
   ModelNames names;
 };
 
