@@ -950,18 +950,25 @@ void ModelInference::build_model_topology() {
   finish(regions, topo.entities[3]);
 }
 
-// Each model entity with a file tag takes the name of the first named group
-// (TetSoup::groups, sorted by (dim, tag)) of its dimension listing that tag.
+// Each model entity with a file tag takes the tags of all the groups
+// (TetSoup::groups, sorted by (dim, tag)) of its dimension listing that tag,
+// and the name of the first named one.
 void ModelInference::name_model_entities() {
   std::map<std::pair<int, std::int32_t>, const std::string*> name_of;
+  std::map<std::pair<int, std::int32_t>, std::vector<std::int32_t>> groups_of;
   for (const NamedGroup& g : soup_.groups)
-    if (!g.name.empty() && g.dim >= 0 && g.dim <= 3)
-      for (std::int32_t t : g.entities) name_of.try_emplace({g.dim, t}, &g.name);
-  if (name_of.empty()) return;
+    if (g.dim >= 0 && g.dim <= 3)
+      for (std::int32_t t : g.entities) {
+        groups_of[{g.dim, t}].push_back(g.tag);
+        if (!g.name.empty()) name_of.try_emplace({g.dim, t}, &g.name);
+      }
+  if (groups_of.empty()) return;
   for (auto& ents : TetMeshBuilder::model(m_).entities)
-    for (ModelEntity& e : ents)
-      if (e.source_tag)
-        if (auto it = name_of.find({e.dim, *e.source_tag}); it != name_of.end()) e.name = *it->second;
+    for (ModelEntity& e : ents) {
+      if (!e.source_tag) continue;
+      if (auto it = name_of.find({e.dim, *e.source_tag}); it != name_of.end()) e.name = *it->second;
+      if (auto it = groups_of.find({e.dim, *e.source_tag}); it != groups_of.end()) e.groups = it->second;
+    }
 }
 
 void ModelInference::note_added(int dim, std::int32_t given, std::int32_t tag, const std::string& where) {

@@ -6,6 +6,7 @@
 #include "cli/print.h"
 #include "core/error.h"
 #include "core/stopwatch.h"
+#include "io/format_registry.h"
 #include "io/vtu_poly_reader.h"
 #include "pipeline/convert.h"
 #include "pipeline/summary.h"
@@ -13,10 +14,11 @@
 namespace polydual::cli {
 
 const CommandSpec kConvert{
-    "convert", "convert IN -o OUT [--format vtu|foam] [options]",
+    "convert", "convert IN -o OUT [--format " + poly_format_choices() + "] [options]",
     "Builds the polyhedral dual of a classified tet mesh (paper Algorithm 1), checks\n"
     "every cell with the exact star-shaped test, untangles and smooths it, and writes\n"
-    "VTU (VTK_POLYHEDRON) or an OpenFOAM case directory (OUT/constant/polyMesh).",
+    "VTU (VTK_POLYHEDRON) or an OpenFOAM case directory (OUT/constant/polyMesh).\n"
+    "IN is read by its extension: " + mesh_extensions_text() + ".",
     1, 1,
     {"-o", "--format", "--force", "--vtu-encoding", "--zlib", "--feature-angle", "--strong-angle", "--boundary", "--no-cleanup", "--collapse-tol", "--optimize", "--planarity", "--optimize-tets", "--tet-sweeps", "--tet-flips", "--tet-flip-rounds", "--no-split", "--split-rounds", "--no-coarsen", "--require-valid", "--metric",
      "--derivatives", "--relaxation", "--tol", "--polish-sweeps", "--polish-share", "--worst-rounds", "--settle-move", "--max-iter", "--threads", "--json", "--quiet"}};

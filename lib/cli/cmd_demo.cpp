@@ -51,7 +51,10 @@ Json run_domain(Domain d, const Settings& s, const std::filesystem::path& dir) {
   const ConvertResult r = convert_file(msh, vtu, PolyFormat::Vtu, s.params, progress.hooks(), s.write);
   progress.end_line();
   Json j = convert_summary(r, s.params);
-  j.set("foam", write_poly_mesh(r.mesh, (dir / (name + "_case")).string(), PolyFormat::Foam, {}, s.write));
+  WriteContext foam;
+  foam.options = s.write;
+  foam.names = model_names(r.primal.model());
+  j.set("foam", write_poly_mesh(r.mesh, (dir / (name + "_case")).string(), PolyFormat::Foam, foam));
   const PolyMesh back = read_vtu_poly(vtu);
   const CheckResult back_check = check_mesh(back, nullptr);
   const Json chk = mesh_summary(back, back_check, nullptr);

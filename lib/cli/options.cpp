@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "generate/domains.h"
+#include "io/format_registry.h"
 
 namespace polydual::cli {
 
@@ -25,8 +26,7 @@ constexpr double kNoRange = 0;
 const std::vector<OptionDef> kTable = {
     {"-o", K::Text, "OUT", kNoRange, kNoRange, "output file or directory (required)", nullptr,
      [](Settings& s, const std::string& v) { s.out = v; }},
-    {"--format", K::Choice, "vtu|foam", kNoRange, kNoRange,
-     "output format (default: from OUT: *.vtu -> vtu, a name without extension -> OpenFOAM case)", nullptr,
+    {"--format", K::Choice, poly_format_choices().c_str(), kNoRange, kNoRange, poly_format_help().c_str(), nullptr,
      [](Settings& s, const std::string& v) { s.format = v; }},
     {"--force", K::Flag, "", kNoRange, kNoRange,
      "write into an existing directory that is not an OpenFOAM case (convert) or an earlier demo's (demo), "

@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <memory>
 #include <map>
+#include <set>
+#include <cctype>
 #include <span>
 #include <ostream>
 
@@ -83,11 +85,111 @@ struct FoamCase {
   std::vector<OutFace> faces;
   Label internal = 0;
   std::vector<Patch> patches;
-  std::map<std::int32_t, std::vector<Label>> cell_zones;
+  std::vector<std::pair<std::string, std::vector<Label>>> cell_zones;  // (name, cells)
   std::vector<FaceZone> face_zones;
 };
 
-FoamCase build_case(const PolyMesh& m, FoamReport& report) {
+// A model name as an OpenFOAM word (a patch or zone name): letters, digits,
+// '_', '.' and '-' are kept, any other byte becomes '_', and a word that
+// would not start with a letter or '_' (OpenFOAM would read a number) gets a
+// leading '_'.
+std::string foam_word(const std::string& name) {
+  std::string w;
+  for (unsigned char c : name) w += std::isalnum(c) || c == '_' || c == '.' || c == '-' ? char(c) : '_';
+  if (w.empty() || !(std::isalpha(static_cast<unsigned char>(w[0])) || w[0] == '_')) w.insert(w.begin(), '_');
+  return w;
+}
+
+// Words for model names, unique: one model name gets one word, two names
+// that sanitise alike get "_2", "_3", ... appended, and no word takes one of
+// the `reserved` names (the "face_<tag>" names of unnamed entities).
+class WordNamer {
+ public:
+  explicit WordNamer(std::set<std::string> reserved) : used_(std::move(reserved)) {}
+  const std::string& word(const std::string& name) {
+    if (auto it = of_.find(name); it != of_.end()) return it->second;
+    std::string w = foam_word(name);
+    for (int n = 2; used_.count(w); ++n) w = foam_word(name) + "_" + std::to_string(n);
+    used_.insert(w);
+    return of_.emplace(name, w).first->second;
+  }
+
+ private:
+  std::set<std::string> used_;
+  std::map<std::string, std::string> of_;
+};
+
+// The name of each key: its model name's word, else `fallback(key)`.
+template <class Key, class Named, class Fallback>
+std::map<Key, std::string> names_of(const std::vector<Key>& keys, Named named, Fallback fallback) {
+  std::set<std::string> reserved;
+  for (const Key& k : keys)
+    if (!named(k)) reserved.insert(fallback(k));
+  WordNamer namer(std::move(reserved));
+  std::map<Key, std::string> out;
+  for (const Key& k : keys) out.emplace(k, named(k) ? namer.word(*named(k)) : fallback(k));
+  return out;
+}
+
+const std::string* name_in(const std::map<std::int32_t, std::string>& names, std::int32_t tag) {
+  const auto it = names.find(tag);
+  return it == names.end() ? nullptr : &it->second;
+}
+
+using BoundaryKey = std::pair<int, std::int32_t>;  // (0, model face tag) or (1, 0): defaultFaces
+
+// The patches in key order, those of one model name merged into one (at the
+// place of its first tag): "face_<tag>" without a name, "defaultFaces" for
+// faces that are not External.
+void add_patches(FoamCase& fc, std::map<BoundaryKey, std::vector<OutFace>>& boundary, const ModelNames& names) {
+  std::vector<BoundaryKey> keys;
+  for (const auto& [key, list] : boundary) keys.push_back(key);
+  const auto name = names_of(
+      keys, [&](const BoundaryKey& k) { return k.first == 0 ? name_in(names.faces, k.second) : nullptr; },
+      [](const BoundaryKey& k) { return k.first == 0 ? "face_" + std::to_string(k.second) : std::string("defaultFaces"); });
+  std::vector<std::string> order;
+  for (const BoundaryKey& k : keys)
+    if (std::find(order.begin(), order.end(), name.at(k)) == order.end()) order.push_back(name.at(k));
+  for (const std::string& patch : order) {
+    const Label start = static_cast<Label>(fc.faces.size());
+    for (auto& [key, list] : boundary)
+      if (name.at(key) == patch) fc.faces.insert(fc.faces.end(), list.begin(), list.end());
+    fc.patches.push_back({patch, start, static_cast<Label>(fc.faces.size()) - start});
+  }
+}
+
+// One cell zone per material ("material_<tag>") or per material name (the
+// cells of all the regions of that name), in tag order; cells increasing.
+void add_cell_zones(FoamCase& fc, const PolyMesh& m, const ModelNames& names) {
+  std::set<std::int32_t> tags(m.cell_material.begin(), m.cell_material.end());
+  const std::vector<std::int32_t> keys(tags.begin(), tags.end());
+  const auto name = names_of(
+      keys, [&](std::int32_t t) { return name_in(names.regions, t); },
+      [](std::int32_t t) { return "material_" + std::to_string(t); });
+  std::map<std::int32_t, std::size_t> zone_of;
+  for (std::int32_t t : keys) {
+    auto same = std::find_if(fc.cell_zones.begin(), fc.cell_zones.end(), [&](const auto& z) { return z.first == name.at(t); });
+    if (same == fc.cell_zones.end()) same = fc.cell_zones.insert(same, {name.at(t), {}});
+    zone_of[t] = static_cast<std::size_t>(same - fc.cell_zones.begin());
+  }
+  for (std::size_t c = 0; c < m.num_cells(); ++c)
+    fc.cell_zones[zone_of.at(m.cell_material[c])].second.push_back(static_cast<Label>(c));
+}
+
+// The name of each interface and fracture face zone: its model face's name
+// where it has one, else "interface_<tag>" / "fracture_<tag>".
+std::map<std::pair<FaceKind, std::int32_t>, std::string> face_zone_names(const PolyMesh& m, const ModelNames& names) {
+  std::set<std::pair<FaceKind, std::int32_t>> keys;
+  for (std::size_t f = 0; f < m.num_faces(); ++f)
+    if (m.face_kind[f] == FaceKind::Interface || m.face_kind[f] == FaceKind::Fracture)
+      keys.insert({m.face_kind[f], m.face_tag[f]});
+  return names_of(
+      std::vector<std::pair<FaceKind, std::int32_t>>(keys.begin(), keys.end()),
+      [&](const auto& k) { return name_in(names.faces, k.second); },
+      [](const auto& k) { return (k.first == FaceKind::Interface ? "interface_" : "fracture_") + std::to_string(k.second); });
+}
+
+FoamCase build_case(const PolyMesh& m, const ModelNames& names, FoamReport& report) {
   FoamCase fc;
   std::vector<OutFace> internal;
   std::map<std::pair<int, std::int32_t>, std::vector<OutFace>> boundary;  // (0 tag | 1 default)
@@ -135,11 +237,7 @@ FoamCase build_case(const PolyMesh& m, FoamReport& report) {
   });
   fc.faces = std::move(internal);
   fc.internal = static_cast<Label>(fc.faces.size());
-  for (auto& [key, list] : boundary) {
-    fc.patches.push_back({key.first == 0 ? "face_" + std::to_string(key.second) : "defaultFaces",
-                          static_cast<Label>(fc.faces.size()), static_cast<Label>(list.size())});
-    fc.faces.insert(fc.faces.end(), list.begin(), list.end());
-  }
+  add_patches(fc, boundary, names);
 
   // Keep only points that a kept face uses, in PolyMesh order.
   fc.point_map.assign(m.num_points(), -1);
@@ -151,16 +249,16 @@ FoamCase build_case(const PolyMesh& m, FoamReport& report) {
       fc.points.push_back(PointId(p));
     }
 
-  for (std::size_t c = 0; c < m.num_cells(); ++c)
-    fc.cell_zones[m.cell_material[c]].push_back(static_cast<Label>(c));
+  add_cell_zones(fc, m, names);
   std::map<std::pair<FaceKind, std::int32_t>, FaceZone> zones;
+  const auto zone_names = face_zone_names(m, names);
   for (std::size_t i = 0; i < fc.faces.size(); ++i) {
     const OutFace& f = fc.faces[i];
     const FaceKind kind = m.face_kind[f.source.idx];
     if (kind != FaceKind::Interface && kind != FaceKind::Fracture) continue;
     const std::int32_t tag = m.face_tag[f.source.idx];
     FaceZone& z = zones[{kind, tag}];
-    z.name = (kind == FaceKind::Interface ? "interface_" : "fracture_") + std::to_string(tag);
+    z.name = zone_names.at({kind, tag});
     bool flip = f.flipped;  // keep the PolyMesh orientation...
     if (kind == FaceKind::Interface && f.neighbour >= 0) {  // ...or lower -> higher material
       const auto mo = m.cell_material[static_cast<std::size_t>(f.owner)];
@@ -170,7 +268,12 @@ FoamCase build_case(const PolyMesh& m, FoamReport& report) {
     z.faces.push_back(static_cast<Label>(i));
     z.flip.push_back(flip);
   }
-  for (auto& [key, z] : zones) fc.face_zones.push_back(std::move(z));
+  for (auto& [key, z] : zones) {  // zones of one model name are one zone
+    auto same = std::find_if(fc.face_zones.begin(), fc.face_zones.end(), [&](const FaceZone& o) { return o.name == z.name; });
+    if (same == fc.face_zones.end()) { fc.face_zones.push_back(std::move(z)); continue; }
+    same->faces.insert(same->faces.end(), z.faces.begin(), z.faces.end());
+    same->flip.insert(same->flip.end(), z.flip.begin(), z.flip.end());
+  }
 
   report.points = fc.points.size();
   report.dropped_points = m.num_points() - fc.points.size();
@@ -264,8 +367,8 @@ void write_poly_mesh(const PolyMesh& m, const FoamCase& fc, const fs::path& dir,
   });
   write_foam_file(dir / "cellZones", "regIOobject", loc, "", [&](std::ostream& os) {
     os << fc.cell_zones.size() << "\n(\n";
-    for (const auto& [tag, cells] : fc.cell_zones) {
-      os << "material_" << tag << "\n{\n    type cellZone;\ncellLabels      ";
+    for (const auto& [name, cells] : fc.cell_zones) {
+      os << name << "\n{\n    type cellZone;\ncellLabels      ";
       put_inline_list(os, "label", cells);
       os << "}\n";
     }
@@ -326,13 +429,14 @@ std::vector<fs::path> create_missing_directories(const fs::path& dir) {
 
 }  // namespace
 
-FoamReport write_foam(const PolyMesh& mesh, const std::string& case_dir, const FoamOptions& options) {
+FoamReport write_foam(const PolyMesh& mesh, const std::string& case_dir, const FoamOptions& options,
+                      const ModelNames& names) {
   if (options.patch_type.empty() || options.patch_type.find_first_of(" ;{}\"") != std::string::npos)
     throw UsageError("write_foam: bad patch type '" + options.patch_type + "'");
   check_case_directory(case_dir, options.force);
   throw_if_interrupted();
   FoamReport report;
-  const FoamCase fc = build_case(mesh, report);
+  const FoamCase fc = build_case(mesh, names, report);
   const fs::path dir(case_dir), poly = dir / "constant" / "polyMesh";
   const bool had_mesh = fs::exists(fs::symlink_status(poly));
   const std::vector<fs::path> created = create_missing_directories(dir / "constant");

@@ -11,7 +11,8 @@
 //  - internal faces first, in upper-triangular order (by owner, then neighbour;
 //    ties by PolyMesh face id), then boundary faces grouped by patch;
 //  - one patch per external model face tag (and per model face tag holding slit
-//    faces), "face_<tag>", increasing tag order;
+//    faces), "face_<tag>" or the model face's name (see write_foam), increasing
+//    tag order;
 //    boundary faces that are not FaceKind::External (should not happen in a valid
 //    dual) go to a last patch "defaultFaces";
 //  - a slit face (owner == neighbour, at fracture tips; its cell lists it twice
@@ -25,7 +26,7 @@
 //    e.g. a cap passing twice through a model-edge midpoint) are cut out of the
 //    loop, and a face left with < 3 points is dropped (both counted);
 //  - cellZones "material_<tag>" per material; faceZones "interface_<tag>" and
-//    "fracture_<tag>" per Interface/Fracture face tag. flipMap: an interface
+//    "fracture_<tag>" per Interface/Fracture face tag (or the entity's name). flipMap: an interface
 //    zone is oriented from the lower material tag to the higher; a fracture zone
 //    keeps the PolyMesh orientation (owner -> neighbour) of each face.
 // Points carry 17 significant digits (exact double round trip).
@@ -34,6 +35,7 @@
 #include <string>
 
 #include "core/json.h"
+#include "io/model_names.h"
 #include "mesh/poly_mesh.h"
 
 namespace polydual {
@@ -67,7 +69,13 @@ struct FoamReport {
 // created are removed again; the error propagates.
 // Throws UsageError when `case_dir` may not be written (check_case_directory),
 // InputError("<memory>", "face N", ...) for a face without any cell.
+// With `names`, a patch, cell zone or face zone whose model entity is named
+// takes the name as an OpenFOAM word (bytes other than letters, digits, '_',
+// '.', '-' become '_'; a leading '_' where it would not start with a letter
+// or '_'; "_2", "_3", ... where two names would clash), and the entities of
+// one name are one patch or zone (at the place of the first). Without names
+// the case is the same bytes as before names existed.
 FoamReport write_foam(const PolyMesh& mesh, const std::string& case_dir,
-                      const FoamOptions& options = {});
+                      const FoamOptions& options = {}, const ModelNames& names = {});
 
 }  // namespace polydual

@@ -1,4 +1,5 @@
-// Reading any supported tet mesh by file extension: .msh (Gmsh 2.0-2.2/4.1;
+// Reading any supported tet mesh by file extension, through the format
+// registry (io/format_registry.h): .msh (Gmsh 2.0-2.2/4.1;
 // .gmsh2, Netgen's name for its msh 2.0 export, too),
 // .mesh (Medit), .node/.ele (TetGen, with .face when present), .vtu (VTK XML).
 #pragma once

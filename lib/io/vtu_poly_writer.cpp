@@ -8,6 +8,7 @@
 #include <limits>
 #include <optional>
 #include <ostream>
+#include <map>
 #include <set>
 #include <type_traits>
 
@@ -324,7 +325,25 @@ std::vector<OutArray> cell_arrays(const PolyMesh& mesh, const CellOffsets& off) 
 }
 
 // Every array but the Cells section, built from the mesh as it is written.
-Layout layout_of(const PolyMesh& mesh, const std::vector<CellField>& extra, const CellOffsets& off) {
+// The names of `named` as FieldData: `tag_name` (Int32, the tags) and
+// `name` (a VTK String array: each name's bytes and a 0, one tuple each).
+void add_name_arrays(std::vector<OutArray>& field, const std::map<std::int32_t, std::string>& named,
+                     const char* tag_name, const char* name) {
+  if (named.empty()) return;
+  field.push_back(out_array<std::int32_t>("Int32", tag_name, 1, named.size(), [&named](ByteSink& s) {
+    for (const auto& [tag, n] : named) s.put(tag);
+  }, true));
+  std::size_t nbytes = 0;
+  for (const auto& [tag, n] : named) nbytes += n.size() + 1;
+  OutArray a = out_array<std::uint8_t>("String", name, 1, nbytes, [&named](ByteSink& s) {
+    for (const auto& [tag, n] : named) s.append(n.c_str(), n.size() + 1);
+  }, true);
+  a.count = named.size();  // NumberOfTuples: strings, not bytes
+  field.push_back(std::move(a));
+}
+
+Layout layout_of(const PolyMesh& mesh, const std::vector<CellField>& extra, const CellOffsets& off,
+                 const ModelNames& names) {
   const std::size_t nc = mesh.num_cells(), np = mesh.num_points();
   auto per_half_face = [&mesh, nc](bool kind) {
     return [&mesh, nc, kind](ByteSink& s) {
@@ -337,6 +356,8 @@ Layout layout_of(const PolyMesh& mesh, const std::vector<CellField>& extra, cons
   Layout l;
   l.field = {out_array<std::int32_t>("Int32", "face_kind", 1, off.half_faces, per_half_face(true), true),
              out_array<std::int32_t>("Int32", "face_tag", 1, off.half_faces, per_half_face(false), true)};
+  add_name_arrays(l.field, names.regions, "region_name_tag", "region_name");
+  add_name_arrays(l.field, names.faces, "face_name_tag", "face_name");
   l.point = {out_array<std::int8_t>("Int8", "class_dim", 1, np,
                                     [&mesh, np](ByteSink& s) {
                                       for (std::size_t i = 0; i < np; ++i) s.put(static_cast<std::int8_t>(mesh.point_class[i].dim));
@@ -365,11 +386,11 @@ Layout layout_of(const PolyMesh& mesh, const std::vector<CellField>& extra, cons
 
 }  // namespace
 
-void write_vtu_poly(const PolyMesh& mesh, const std::string& path,
-                    const std::vector<CellField>& extra, const VtuOptions& options) {
+void write_vtu_poly(const PolyMesh& mesh, const std::string& path, const std::vector<CellField>& extra,
+                    const VtuOptions& options, const ModelNames& names) {
   check_options(mesh, extra, options);
   const CellOffsets offsets = cell_offsets(mesh);
-  const Layout l = layout_of(mesh, extra, offsets);
+  const Layout l = layout_of(mesh, extra, offsets, names);
   write_file_atomically(path, [&](std::ostream& os) { write_file(os, mesh.num_points(), mesh.num_cells(), l, options); },
                         options.binary || options.appended);
 }

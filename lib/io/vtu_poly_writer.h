@@ -19,6 +19,7 @@
 #include <variant>
 #include <vector>
 
+#include "io/model_names.h"
 #include "mesh/poly_mesh.h"
 
 namespace polydual {
@@ -48,7 +49,11 @@ struct VtuOptions {
 // Same mesh and options -> same bytes. Throws UsageError when an extra field's
 // size differs from the cell count or its name clashes with a built-in array,
 // or when the options ask for compressed ASCII or a level outside 0..9.
+// With `names`, FieldData also holds region_name_tag (Int32) and region_name
+// (String), face_name_tag and face_name: each named region / model face's tag
+// and name; nothing is added without names.
 void write_vtu_poly(const PolyMesh& mesh, const std::string& path,
-                    const std::vector<CellField>& extra = {}, const VtuOptions& options = {});
+                    const std::vector<CellField>& extra = {}, const VtuOptions& options = {},
+                    const ModelNames& names = {});
 
 }  // namespace polydual

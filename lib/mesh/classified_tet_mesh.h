@@ -80,7 +80,7 @@ inline constexpr auto kEdgeOf = [] {
 // one `source_tag` (the marker is their group, e.g. an OpenFOAM patch).
 // `name` is the name of the first named group of the soup (TetSoup::groups,
 // in (dim, tag) order) of the same dimension that lists `source_tag`, "" when
-// none does.
+// none does; `groups` are the tags of all those groups.
 struct ModelEntity {
   int dim = 0;
   std::int32_t tag = 0;
@@ -88,6 +88,9 @@ struct ModelEntity {
   std::vector<std::int32_t> regions; // for faces: regions on its sides (1 or 2 tags, equal twice for a fracture)
   std::optional<std::int32_t> source_tag;
   std::string name;
+  // The tags of every physical group (TetSoup::groups) of this dimension that
+  // lists `source_tag`, increasing: all of a Gmsh entity's physical tags.
+  std::vector<std::int32_t> groups;
   // Faces: all its triangles lie in one plane (decided by classify() with the
   // exact orientation test; data structures decide no signs). False when
   // unknown or curved.

@@ -14,6 +14,7 @@
 #include "core/stopwatch.h"
 #include "dual/cut_topology.h"
 #include "io/output_guard.h"
+#include "io/format_registry.h"
 #include "io/read_tet_mesh.h"
 #include "split/coarsen.h"
 #include "split/cuts.h"
@@ -654,15 +655,15 @@ Json write_result(const ConvertResult& r, const std::string& path, PolyFormat fo
       from[c] = r.mesh.cell_origin[c].valid() ? std::int32_t(r.mesh.cell_origin[c].idx) : -1;
     fields.push_back(CellField{"split_from", std::move(from)});
   }
-  return write_poly_mesh(r.mesh, path, format, std::move(fields), options);
+  return write_poly_mesh(r.mesh, path, format, WriteContext{options, std::move(fields), model_names(r.primal.model())});
 }
 
 ConvertResult convert_file(const std::string& in, const std::string& out, PolyFormat format,
                            const PipelineParams& params, const ConvertHooks& hooks, const PolyWriteOptions& options) {
   params.validate();
   const std::string inputs[] = {in};
-  check_output_target(inputs, out, format == PolyFormat::Foam ? OutputKind::FoamCase : OutputKind::File,
-                      options.foam.force, format == PolyFormat::Vtu ? ".vtu" : "");
+  check_output_target(inputs, out, format.writer().output_kind(), options.foam.force,
+                      std::string(format.writer().extension()));
   const Stopwatch clock;
   ConvertResult r;
   TetSoup soup = run_stage(r.report, hooks, "read", [&](Json& stats) {

@@ -75,7 +75,8 @@ ConvertResult convert(const TetSoup& soup, const PipelineParams& params, const C
 Defect invalid_cells_defect(const ConvertResult& r);
 
 // Writes r.mesh with its verdicts as cell data ("valid", "bad_tets") and, for
-// a split mesh, each cell's uncut cell ("split_from").
+// a split mesh, each cell's uncut cell ("split_from"), with the names of
+// r.primal's model entities (io/write_context.h).
 Json write_result(const ConvertResult& r, const std::string& path, PolyFormat format,
                   const PolyWriteOptions& options = {});
 
