@@ -47,6 +47,8 @@ echo "| mesh | tets | polydual cells | polydual wall s, 1 thread (best / mean) |
 echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
 for mesh in "$@"; do
   name=$(basename "$mesh"); name="${name%%.*}"
+  # TetGen's X.1.ele: named after its directory when it has one (X is the PLC's).
+  case "$mesh" in */*.1.ele) name="$(basename "$(dirname "$mesh")")" ;; esac
   w="$work/$name"; rm -rf "$w"; mkdir -p "$w"
   to_msh22 "$mesh" "$w/in22.msh"
   for ((i = 0; i < runs; i++)); do
