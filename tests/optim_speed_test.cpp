@@ -361,7 +361,7 @@ PolyMesh raw_random_dual() { return raw_random_conversion(1, 400).mesh; }
 // point is still invalid, else on the lagged one. The full model on the
 // first sweep trades the tangled cells' energy for huge distortions around
 // them (twomat 100k: mean kappa/3 2.65 -> 125, max 2e6, against 2.49 and 1193;
-// bench/README.md). Checked here through the sweeps' model counts, and that
+// bench/HISTORY.md). Checked here through the sweeps' model counts, and that
 // the paper's derivatives (Analytic) keep the full model throughout.
 TEST(OptimSpeed, FirstUntanglingSweepUsesTheLaggedModel) {
   const PolyMesh dual = raw_random_dual();
@@ -440,7 +440,7 @@ TEST(OptimSpeed, FirstUntanglingSweepVisitsTheEndsOfTheBadTets) {
 // The default (Local, Corrected) schedule: the first untangling sweep on the
 // lagged model, the first smoothing sweep on the corrected model at every
 // point (no full-model visit: the full model pays only from the second
-// smoothing sweep on and in the polish, bench/README.md). The paper's
+// smoothing sweep on and in the polish, bench/HISTORY.md). The paper's
 // derivatives (Analytic) use the full model at every visit.
 TEST(OptimSpeed, FirstSmoothingSweepUsesNoFullModel) {
   const PolyMesh dual = raw_random_dual();
