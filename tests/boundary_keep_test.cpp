@@ -30,6 +30,7 @@
 #include "optim/boundary.h"
 #include "pipeline/convert.h"
 #include "pipeline/params.h"
+#include "require_tool.h"
 #include "run_command.h"
 
 using namespace polydual;
@@ -129,7 +130,7 @@ TetSoup dyadic_two_material_box() {
   return s;
 }
 
-bool have(const char* tool) { return std::system((std::string("command -v ") + tool + " > /dev/null 2>&1").c_str()) == 0; }
+using test::have_command;
 
 fs::path scratch(const std::string& name) {
   const fs::path dir = fs::temp_directory_path() / ("polydual_boundary_keep_" + std::to_string(::getpid()));
@@ -311,7 +312,7 @@ TEST(BoundaryKeep, DefaultPipelineOnEveryDomain) {
 // the spheres, model vertices at the end of each seam inside an interface
 // face, are on the dual (L4).
 TEST(BoundaryKeep, CurvedGmshModelsKeepTheirVolume) {
-  if (!have("gmsh")) GTEST_SKIP() << "gmsh is not installed";
+  if (!have_command("gmsh")) POLYDUAL_MISSING_TOOL("gmsh is not installed (Debian package gmsh)");
   for (const auto& [name, geo] : {std::pair{"incl5", kInclusionsGeo}, std::pair{"sphere", kSphereGeo}}) {
     SCOPED_TRACE(name);
     const TetSoup soup = read_tet_mesh(gmsh_mesh(name, geo).string());

@@ -18,6 +18,7 @@
 #include "classify/classify.h"
 #include "classify/features.h"
 #include "io/read_tet_mesh.h"
+#include "require_tool.h"
 #include "run_command.h"
 
 using namespace polydual;
@@ -104,9 +105,7 @@ TEST(ClassifyFeatures, SingleEdgesBetweenFlatCornersAreKept) {
 
 // ---- meshes made at test time
 
-bool have(const char* tool) {
-  return std::system((std::string("command -v ") + tool + " > /dev/null 2>&1").c_str()) == 0;
-}
+using test::have_command;
 
 // A directory of this process, removed at exit.
 const fs::path& scratch() {
@@ -176,7 +175,7 @@ constexpr const char* kChamferPoly =
     "1 0 1\n4 2 7 8 3\n1 0 1\n4 3 8 9 4\n1 0 1\n4 4 9 10 5\n0\n0\n";
 
 TEST(ClassifyFeatures, TetgenChamferedCubeKeepsEveryEdge) {
-  if (!have("tetgen")) GTEST_SKIP() << "tetgen is not installed";
+  if (!have_command("tetgen")) POLYDUAL_MISSING_TOOL("tetgen is not installed (Debian package tetgen)");
   write("chamfer.poly", kChamferPoly);
   const ClassifiedTetMesh fine = tetgen("chamfer.poly", "q1.4a0.002");
   EXPECT_EQ(counts(fine), (Counts{10, 15, 7}));
@@ -191,7 +190,7 @@ TEST(ClassifyFeatures, TetgenChamferedCubeKeepsEveryEdge) {
 // was split and why (coarse chamfered cube: 13 strong edges, the chamfer's
 // two 45-degree edges kept as single edges between corners).
 TEST(ClassifyFeatures, InfoAndConvertJsonReportPerMarker) {
-  if (!have("tetgen")) GTEST_SKIP() << "tetgen is not installed";
+  if (!have_command("tetgen")) POLYDUAL_MISSING_TOOL("tetgen is not installed (Debian package tetgen)");
   write("report.poly", kChamferPoly);
   run("tetgen -p report.poly > report.log");
   const std::string mesh = (scratch() / "report.1.node").string();
@@ -213,14 +212,14 @@ TEST(ClassifyFeatures, InfoAndConvertJsonReportPerMarker) {
 }
 
 TEST(ClassifyFeatures, OccBoxFromStlHasItsTwelveEdges) {
-  if (!have("gmsh") || !have("tetgen")) GTEST_SKIP() << "gmsh or tetgen is not installed";
+  if (!have_command("gmsh") || !have_command("tetgen")) POLYDUAL_MISSING_TOOL("gmsh or tetgen is not installed");
   const ClassifiedTetMesh m = occ_stl("box", "Box(1) = {0,0,0, 1,0.7,0.4};", 0.3);
   EXPECT_EQ(counts(m), (Counts{8, 12, 6}));
 }
 
 // The rims are found (two closed model edges), the side stays one face.
 TEST(ClassifyFeatures, OccCylinderFromStlHasItsRimsAndOneSide) {
-  if (!have("gmsh") || !have("tetgen")) GTEST_SKIP() << "gmsh or tetgen is not installed";
+  if (!have_command("gmsh") || !have_command("tetgen")) POLYDUAL_MISSING_TOOL("gmsh or tetgen is not installed");
   const ClassifiedTetMesh m = occ_stl("cylinder", "Cylinder(1) = {0,0,0, 0,0,1, 0.5};", 0.25);
   EXPECT_EQ(counts(m), (Counts{0, 2, 3}));
   for (const ModelEntity& e : m.model().entities[1]) EXPECT_EQ(e.bounds.size(), 2u) << "edge " << e.tag;
@@ -229,7 +228,7 @@ TEST(ClassifyFeatures, OccCylinderFromStlHasItsRimsAndOneSide) {
 // A coarse sphere (32 to 121 tets) bends by more than 30 degrees at many
 // edges, in no line: one face, no model edge or vertex.
 TEST(ClassifyFeatures, CoarseOccSphereStaysOneFace) {
-  if (!have("gmsh") || !have("tetgen")) GTEST_SKIP() << "gmsh or tetgen is not installed";
+  if (!have_command("gmsh") || !have_command("tetgen")) POLYDUAL_MISSING_TOOL("gmsh or tetgen is not installed");
   std::size_t dropped = 0;
   for (double size : {0.6, 0.8, 1.2}) {
     const ClassifiedTetMesh m = occ_stl("sphere" + std::to_string(int(size * 10)), "Sphere(1) = {0,0,0, 1};", size);
@@ -242,7 +241,7 @@ TEST(ClassifyFeatures, CoarseOccSphereStaysOneFace) {
 // A box with a round hole through it: the hole's rims are features although
 // the hole's side turns by about 40 degrees from one rim edge to the next.
 TEST(ClassifyFeatures, OccHoledBoxFromStlKeepsTheHole) {
-  if (!have("gmsh") || !have("tetgen")) GTEST_SKIP() << "gmsh or tetgen is not installed";
+  if (!have_command("gmsh") || !have_command("tetgen")) POLYDUAL_MISSING_TOOL("gmsh or tetgen is not installed");
   const ClassifiedTetMesh m = occ_stl("holed",
                                       "Box(1) = {0,0,0, 1,1,0.5};\nCylinder(2) = {0.5,0.5,-0.1, 0,0,0.7, 0.2};\n"
                                       "BooleanDifference(3) = { Volume{1}; Delete; }{ Volume{2}; Delete; };",
@@ -266,8 +265,8 @@ std::string labelled_image_generator() {
 TEST(ClassifyFeatures, Mesh3LabelledImageKeepsSmoothPatchesWhole) {
   const std::string gen = labelled_image_generator();
   if (gen.empty() || !fs::exists(gen))
-    GTEST_SKIP() << "labelled_image_medit not built (cmake -DPOLYDUAL_BUILD_MESHGEN=ON, or set "
-                    "POLYDUAL_LABELLED_IMAGE_MEDIT)";
+    POLYDUAL_MISSING_TOOL("labelled_image_medit not built (cmake -DPOLYDUAL_BUILD_MESHGEN=ON, or set "
+                          "POLYDUAL_LABELLED_IMAGE_MEDIT)");
   run(gen + " blocks.mesh shape=blocks n=64 facet_size=0.04 cell_size=0.04 > gen.log");
   const ClassifiedTetMesh m = classify(read_tet_mesh((scratch() / "blocks.mesh").string()));
   EXPECT_LE(m.model().count(2), 12u);

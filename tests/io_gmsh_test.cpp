@@ -16,6 +16,7 @@
 #include "classify/classify.h"
 #include "core/error.h"
 #include "io/msh_reader.h"
+#include "require_tool.h"
 
 namespace polydual {
 namespace {
@@ -26,7 +27,7 @@ namespace fs = std::filesystem;
 const std::string kData = POLYDUAL_TEST_DATA;
 
 bool have_gmsh() {
-  static const bool have = std::system("gmsh --version > /dev/null 2>&1") == 0;
+  static const bool have = test::have_command("gmsh");
   return have;
 }
 
@@ -113,7 +114,7 @@ void expect_every_layout(const std::string& model, const Counts& expected) {
 }
 
 #define REQUIRE_GMSH() \
-  if (!have_gmsh()) GTEST_SKIP() << "gmsh is not installed"
+  if (!have_gmsh()) POLYDUAL_MISSING_TOOL("gmsh is not installed (Debian package gmsh)")
 
 TEST(IoGmsh, BoxWithHoleDropsConstructionPointAndFreeCurve) {
   REQUIRE_GMSH();

@@ -17,6 +17,7 @@
 #include "core/error.h"
 #include "io/medit_io.h"
 #include "io/msh_reader.h"
+#include "require_tool.h"
 
 namespace polydual {
 namespace {
@@ -55,7 +56,7 @@ struct Scratch {
   fs::path path = fs::path(testing::TempDir()) / ("polydual_meshio_" + std::to_string(getpid()));
   bool ok = false;
   Scratch() {
-    if (std::system("/usr/bin/python3 -c 'import meshio' > /dev/null 2>&1") != 0) return;
+    if (!test::have_python_module("meshio")) return;
     fs::create_directories(path);
     std::ofstream(path / "write.py") << kScript;
     const std::string cmd = "/usr/bin/python3 " + (path / "write.py").string() + " " + kData + "/cube5_v2.msh " +
@@ -70,7 +71,7 @@ const Scratch& scratch() {
   return s;
 }
 #define REQUIRE_MESHIO() \
-  if (scratch().path.empty() || !fs::exists(scratch().path / "m.mesh")) GTEST_SKIP() << "no /usr/bin/python3 with meshio"
+  if (scratch().path.empty() || !fs::exists(scratch().path / "m.mesh")) POLYDUAL_MISSING_TOOL("no /usr/bin/python3 with meshio (python3-meshio)")
 
 std::map<std::int32_t, int> per_region(const TetSoup& s) {
   std::map<std::int32_t, int> n;

@@ -30,6 +30,7 @@
 #include "io/vtu_reader.h"
 #include "mesh/validate.h"
 #include "pipeline/convert.h"
+#include "require_tool.h"
 #include "run_command.h"
 
 namespace polydual {
@@ -166,8 +167,7 @@ TEST(IoProducers, ConvertJsonAndStderrCarryTheFlipWarning) {
 }
 
 TEST(IoProducers, NetgenRunAtTestTime) {
-  if (std::system("/usr/bin/python3 -c 'import netgen.csg' > /dev/null 2>&1") != 0)
-    GTEST_SKIP() << "python3-netgen is not installed";
+  if (!test::have_python_module("netgen.csg")) POLYDUAL_MISSING_TOOL("python3-netgen is not installed");
   const std::string out = (scratch() / "netgen_now.msh").string();
   const std::string cmd = "/usr/bin/python3 " + std::string(POLYDUAL_TEST_DATA) + "/netgen/make_gmsh2.py " + out +
                           " 0.35 > " + out + ".log 2>&1";
@@ -312,7 +312,7 @@ TEST(IoProducers, DegenerateTetStaysAnErrorInANegativeMesh) {
 // ---- Gmsh's homology and cohomology chains
 
 bool have_gmsh() {
-  static const bool have = std::system("gmsh --version > /dev/null 2>&1") == 0;
+  static const bool have = test::have_command("gmsh");
   return have;
 }
 
@@ -364,7 +364,7 @@ Model model_of(const TetSoup& s) {
 }
 
 TEST(IoProducers, GmshHomologyChainsAreDropped) {
-  if (!have_gmsh()) GTEST_SKIP() << "gmsh is not installed";
+  if (!have_gmsh()) POLYDUAL_MISSING_TOOL("gmsh is not installed (Debian package gmsh)");
   for (const char* options : {"-format msh4", "-format msh4 -save_all", "-format msh4 -bin", "-format msh2",
                               "-format msh2 -bin"}) {
     SCOPED_TRACE(options);
@@ -392,7 +392,7 @@ TEST(IoProducers, GmshHomologyChainsAreDropped) {
 // msh 2 with -save_all writes every element with physical tag 0: the chains
 // cannot be found, and the reader says so.
 TEST(IoProducers, GmshChainsInMsh2SaveAllAreNamedInAWarning) {
-  if (!have_gmsh()) GTEST_SKIP() << "gmsh is not installed";
+  if (!have_gmsh()) POLYDUAL_MISSING_TOOL("gmsh is not installed (Debian package gmsh)");
   const std::string path = gmsh_mesh("chains_v2_save_all", holed_box_geo(true), "-format msh2 -save_all");
   const TetSoup s = read_msh_file(path);
   EXPECT_EQ(s.ignored.chains, 0u);
@@ -429,7 +429,7 @@ TEST(IoProducers, HandWrittenChainCounts) {
 // ---- files that hold no tetrahedra, as Gmsh writes them
 
 TEST(IoProducers, GmshEmptyModelHoldsNoTetrahedra) {
-  if (!have_gmsh()) GTEST_SKIP() << "gmsh is not installed";
+  if (!have_gmsh()) POLYDUAL_MISSING_TOOL("gmsh is not installed (Debian package gmsh)");
   for (const char* options : {"-format msh4", "-format msh2", "-format msh4 -bin"}) {
     SCOPED_TRACE(options);
     std::string tag = options;
@@ -468,6 +468,7 @@ char reader_of(const std::string& name, std::string& bytes) {
 // the seeds of the producers' files give what they were added for.
 TEST(IoProducers, FuzzRegressionsReplay) {
   const fs::path dir = fs::path(POLYDUAL_SOURCE_DIR) / "fuzz" / "regressions";
+  ASSERT_TRUE(fs::is_directory(dir)) << dir;
   std::map<std::string, std::string> outcome;  // seed -> warnings or error
   for (const auto& entry : fs::directory_iterator(dir)) {
     const std::string name = entry.path().filename().string();
@@ -486,7 +487,7 @@ TEST(IoProducers, FuzzRegressionsReplay) {
       out += std::string("error: ") + e.what();
     }
   }
-  EXPECT_GE(outcome.size(), 20u);
+  ASSERT_GE(outcome.size(), 20u) << "fewer regression seeds than committed in " << dir;
   EXPECT_THAT(outcome["msh_netgen_v2_000000_negative.msh"], HasSubstr("all 2 tets are " + kFlipped));
   EXPECT_THAT(outcome["pipeline_netgen_all_negative"], HasSubstr("all 2 tets are " + kFlipped));
   EXPECT_THAT(outcome["msh_v20_physical_names_without_dim.msh"], HasSubstr("all 1 tet is " + kFlipped));

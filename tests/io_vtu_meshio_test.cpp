@@ -14,6 +14,7 @@
 #include "core/error.h"
 #include "io/file_bytes.h"
 #include "io/vtu_reader.h"
+#include "require_tool.h"
 
 namespace polydual {
 namespace {
@@ -21,7 +22,7 @@ namespace {
 namespace fs = std::filesystem;
 
 bool have_meshio() {
-  return fs::exists("/usr/bin/python3") && std::system("/usr/bin/python3 -c 'import meshio' > /dev/null 2>&1") == 0;
+  return test::have_python_module("meshio");
 }
 
 fs::path scratch_dir() {
@@ -64,7 +65,7 @@ void expect_cube(const TetSoup& s, const std::vector<std::int32_t>& regions, std
 }
 
 TEST(IoVtuMeshio, EveryMeshioEncodingAndRegionName) {
-  if (!have_meshio()) GTEST_SKIP() << "/usr/bin/python3 with meshio (python3-meshio) is not installed";
+  if (!have_meshio()) POLYDUAL_MISSING_TOOL("/usr/bin/python3 with meshio (python3-meshio) is not installed");
   const std::string regions = "[10, 10, 10, 10, 20]";
   const std::vector<std::int32_t> expected{10, 10, 10, 10, 20};
   const std::pair<const char*, const char*> encodings[] = {
@@ -82,7 +83,7 @@ TEST(IoVtuMeshio, EveryMeshioEncodingAndRegionName) {
 }
 
 TEST(IoVtuMeshio, RegionNamesInTheirDocumentedOrder) {
-  if (!have_meshio()) GTEST_SKIP() << "/usr/bin/python3 with meshio (python3-meshio) is not installed";
+  if (!have_meshio()) POLYDUAL_MISSING_TOOL("/usr/bin/python3 with meshio (python3-meshio) is not installed");
   // medit:ref is preferred to CellEntityIds, gmsh:physical to medit:ref,
   // whatever order the file lists them in.
   const fs::path p = meshio_write("order", "", "{'CellEntityIds': " + blocks(0, 0, 3, "[3, 3, 3, 3, 3]") +

@@ -11,6 +11,7 @@
 
 #include "io/vtu_poly_reader.h"
 #include "io/vtu_poly_writer.h"
+#include "require_tool.h"
 
 namespace polydual {
 namespace {
@@ -18,8 +19,8 @@ namespace {
 namespace fs = std::filesystem;
 
 TEST(IoVtuVtk, VtkReadsEveryWriterOption) {
-  if (!fs::exists("/usr/bin/python3") || std::system("/usr/bin/python3 -c 'import vtk' > /dev/null 2>&1") != 0)
-    GTEST_SKIP() << "/usr/bin/python3 with vtk (python3-vtk9) is not installed";
+  if (!test::have_python_module("vtk"))
+    POLYDUAL_MISSING_TOOL("/usr/bin/python3 with vtk (python3-vtk9) is not installed");
   // The committed two-material hex pair (tests/data/poly_twomat_ascii.vtu).
   const PolyMesh m = read_vtu_poly(std::string(POLYDUAL_TEST_DATA) + "/poly_twomat_ascii.vtu");
   const fs::path dir = fs::temp_directory_path() / ("polydual_vtk_" + std::to_string(::getpid()));

@@ -197,8 +197,10 @@ TEST(Pipeline, OverlappingTetsAreAnErrorNotAHang) {
   // triangle sent the ring walk around an edge into an endless cycle.
   const std::string path = std::string(POLYDUAL_SOURCE_DIR) + "/fuzz/regressions/pipeline_overlapping_tets_hang";
   std::ifstream f(path, std::ios::binary);
+  ASSERT_TRUE(f) << "the regression seed " << path << " is missing";
   std::stringstream ss;
   ss << f.rdbuf();
+  ASSERT_GT(ss.str().size(), 1u) << path;
   const std::string bytes = ss.str().substr(1);  // the first byte picks the reader ('m': Medit)
   const TetSoup soup = read_medit(bytes, "overlap.mesh");
   try {

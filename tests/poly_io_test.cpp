@@ -20,6 +20,7 @@
 #include "io/foam_writer.h"
 #include "io/vtu_poly_reader.h"
 #include "io/vtu_poly_writer.h"
+#include "require_tool.h"
 #include "vtu_text_edit.h"
 
 namespace polydual {
@@ -426,20 +427,28 @@ TEST(VtuPoly, ValuesOutOfRangeAreInputErrors) {
             std::string::npos);
 }
 
-// Inputs that once crashed or hung the poly reader (fuzz/regressions/vtu_poly_*)
-// are read again: an InputError or a mesh, nothing else.
+// The regression seeds of the polyhedral VTU reader and its fuzzer
+// (fuzz/regressions/vtu_poly_*: Cells arrays that disagree with each other,
+// cases of EveryCellsArrayIsCheckedAgainstTheOthers kept as files so that
+// fuzz/run.sh starts from them too) are read again: each is an InputError
+// naming its file, never a mesh, a crash or another exception.
 TEST(VtuPoly, FuzzRegressionsReplay) {
   const fs::path dir = fs::path(POLYDUAL_SOURCE_DIR) / "fuzz" / "regressions";
+  ASSERT_TRUE(fs::is_directory(dir)) << dir;
   std::size_t n = 0;
   for (const auto& entry : fs::directory_iterator(dir)) {
     if (entry.path().filename().string().rfind("vtu_poly_", 0) != 0) continue;
     ++n;
+    const std::string path = entry.path().string();
     try {
-      read_vtu_poly(entry.path().string());
-    } catch (const InputError&) {
+      read_vtu_poly(path);
+      ADD_FAILURE() << path << " read as a mesh";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.source(), path);
     }
   }
   RecordProperty("replayed", static_cast<int>(n));
+  EXPECT_GE(n, 4u) << "fewer fuzz/regressions/vtu_poly_* seeds than committed in " << dir;
 }
 
 // ---- OpenFOAM ------------------------------------------------------------------
@@ -617,7 +626,7 @@ std::string run_checkmesh(const fs::path& dir) {
 
 TEST(Foam, CheckMeshAcceptsHandBuiltMeshes) {
   if (!fs::exists("/usr/bin/checkMesh") || !fs::exists("/usr/share/openfoam/etc/controlDict"))
-    GTEST_SKIP() << "OpenFOAM (/usr/bin/checkMesh) is not installed";
+    POLYDUAL_MISSING_TOOL("OpenFOAM (/usr/bin/checkMesh) is not installed (Debian package openfoam)");
   const std::map<std::string, PolyMesh> meshes{{"cube", unit_cube()}, {"twomat", two_materials()},
                                                {"block8", block8()}, {"slit", cube_with_slit()},
                                                {"spur", cube_with_spur()}};

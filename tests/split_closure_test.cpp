@@ -17,19 +17,18 @@
 #include "generate/random_mesh.h"
 #include "io/read_tet_mesh.h"
 #include "pipeline/convert.h"
+#include "require_tool.h"
 #include "run_command.h"
 
 namespace polydual {
 namespace {
-
-bool have_tool(const char* probe) { return std::system(probe) == 0; }
 
 // A thin wedge (10:1.2) with a cone standing on it, meshed by Gmsh's STL and
 // TetGen without a quality bound: slivers at the wedge's sharp edge and the
 // cone's tip. Returns the .ele path, empty if a tool is missing or failed.
 std::string wedge_cone_mesh() {
   static const std::string path = [] {
-    if (!have_tool("gmsh --version > /dev/null 2>&1") || !have_tool("command -v tetgen > /dev/null 2>&1"))
+    if (!test::have_command("gmsh") || !test::have_command("tetgen"))
       return std::string();
     const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "polydual_split_closure";
     std::filesystem::create_directories(dir);
@@ -57,7 +56,7 @@ const Json* split_stat(const ConvertResult& r, const char* key) {
 
 TEST(SplitClosure, TetgenSliversEndValidWithAnyBudget) {
   const std::string ele = wedge_cone_mesh();
-  if (ele.empty()) GTEST_SKIP() << "gmsh or tetgen is not installed (or failed)";
+  if (ele.empty()) POLYDUAL_MISSING_TOOL("gmsh or tetgen is not installed (or failed)");
   const TetSoup soup = read_tet_mesh(ele);
   PipelineParams plain;
   plain.optim.method = OptimParams::Method::None;
@@ -115,7 +114,7 @@ TEST(SplitClosure, RandomMeshesEndValidWithOneRound) {
 // and --require-valid refuses it (exit 1) naming cells too.
 TEST(SplitClosure, InvalidCellsWarnedOrRefused) {
   const std::string ele = wedge_cone_mesh();
-  if (ele.empty()) GTEST_SKIP() << "gmsh or tetgen is not installed (or failed)";
+  if (ele.empty()) POLYDUAL_MISSING_TOOL("gmsh or tetgen is not installed (or failed)");
   const std::string out = std::filesystem::path(ele).parent_path().string() + "/nosplit.vtu";
   std::filesystem::remove(out);
   const testing::CmdResult warned =
