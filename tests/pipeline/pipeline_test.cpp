@@ -56,7 +56,7 @@ TEST(Pipeline, ConvertIsTheCompositionOfTheStages) {
   const TetSoup soup = test_soup();
   PipelineParams params;
   params.optim.method = OptimParams::Method::None;
-  params.split.enabled = false;  // the split loop: tests/split_pipeline_test.cpp
+  params.split.enabled = false;  // the split loop: tests/split/split_pipeline_test.cpp
   std::vector<std::string> observed;
   const ConvertResult r = convert(soup, params, ConvertHooks{[&](const StageRecord& s) { observed.push_back(s.name); }, {}});
   EXPECT_EQ(stage_names(r.report), (std::vector<std::string>{"classify", "dual", "cleanup", "cells", "check"}));
@@ -73,7 +73,7 @@ TEST(Pipeline, ConvertIsTheCompositionOfTheStages) {
   EXPECT_EQ(r.report.invalid_after, c.invalid_cells);
   // Not validation.ok(): model vertices where one model edge ends inside a
   // model face (the random fracture's tip corners) are a known gap of the dual
-  // (tests/dual_test.cpp, check_invariants).
+  // (tests/dual/dual_test.cpp, check_invariants).
   EXPECT_EQ(r.check.validation.closed_cells, pm.num_cells());
   EXPECT_EQ(r.check.validation.face_errors, 0u);
   EXPECT_EQ(r.check.validation.cells, pm.num_cells());
