@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
-# End-to-end benchmark, file to file (issue 14 parts 2 and 4, design §12): per
+# End-to-end benchmark, file to file (design §12): per
 # domain and size, in the same run and interleaved,
 #   raw      polydual convert IN.msh -o OUT.vtu --optimize none
 #   default  polydual convert IN.msh -o OUT.vtu          (certified valid, smoothed)
 #   untangle polydual convert IN.msh -o OUT.vtu --optimize untangle (certified
-#            valid): its optimiser seconds against issue 14's budget, classify +
-#            dual + the star test of the same run (seconds.classify, .dual,
-#            .star_test of its --json; the free-edge cuts are not counted in)
+#            valid): its optimiser seconds against a budget, the same run's
+#            classify + dual + star test seconds (seconds.classify, .dual,
+#            .star_test of its --json; the free-edge cuts are not counted in):
+#            untangling should cost no more than building and checking the dual
 #   pdm      OpenFOAM polyDualMesh 30 on the case gmshToFoam made from the same
 #            mesh (gmshToFoam timed and reported apart, not counted)
 # each under /usr/bin/time (wall clock, peak RSS). raw, untangle and pdm run

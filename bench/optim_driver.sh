@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Optimiser comparison on the paper's domains (issue 4): for each domain, the
+# Optimiser comparison on the paper's domains (paper 3.3): for each domain, the
 # default local scheme (analytic derivatives), the paper's finite differences,
 # ceres::Jet derivatives and the global Ceres L-BFGS, each through
 # `polydual convert --json`. Prints a Markdown table: invalid cells before and

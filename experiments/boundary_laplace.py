@@ -108,6 +108,8 @@ def main():
     if "--" in args:
         k = args.index("--")
         args, extra = args[:k], args[k + 1:]
+    if len(args) < 3 or args[0] in ("-h", "--help"):
+        sys.exit(__doc__)
     polydual, outdir, meshes = args[0], args[1], args[2:]
     os.makedirs(outdir, exist_ok=True)
     print("| mesh | boundary | cells | L2 error of T |")

@@ -2,17 +2,22 @@
 # checkMesh comparison: on each domain at ~TETS tets, runs
 # checkMesh -allTopology -allGeometry on polydual's OpenFOAM case (default
 # optimiser), on OpenFOAM's polyDualMesh and on polyDualMesh -concaveMultiCells
-# of the same Gmsh mesh, keeps the logs in OUT/ and writes the table
-# paper/tables/checkmesh.md (experiments/checkmesh_table.py).
-#   experiments/checkmesh_compare.sh [polydual-binary] [tets, default 20000] [out dir] [domains]
+# of the same Gmsh mesh, keeps the logs and each conversion's --json in OUT,
+# and writes their summary OUT/checkmesh.json and its table OUT/checkmesh.md
+# (experiments/checkmesh_table.py). With --paper as the fifth argument the
+# summary is also recorded as paper/data/checkmesh.json and the table as
+# paper/tables/checkmesh.md.
+#   experiments/checkmesh_compare.sh [polydual-binary] [tets, default 20000]
+#       [out dir, default build/results/checkmesh] [domains] [--paper]
 set -uo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 bin="${1:-$here/../build/polydual}"
 tets="${2:-20000}"
-out="${3:-$here/checkmesh}"
+out="${3:-$here/../build/results/checkmesh}"
 # A domain is a built-in one (polydual generate) or a .geo file meshed by the
 # gmsh command (a model nobody here meshed; its own mesh sizes).
 domains="${4:-cube twomat fichera fracture network fins $here/../tests/data/geo/fractures3.geo $here/../tests/data/geo/piston_fins.geo}"
+paper="${5:-}"
 export WM_PROJECT_DIR=/usr/share/openfoam
 mkdir -p "$out"
 work=$(mktemp -d)
@@ -41,4 +46,10 @@ done
 # The logs name the temporary work directory: recorded as WORK so that reruns
 # differ only where the meshes do.
 sed -i "s#$work#WORK#g" "$out"/*.log "$out"/*.json
-/usr/bin/python3 "$here/checkmesh_table.py" "$out" "$tets" > "$here/../paper/tables/checkmesh.md"
+/usr/bin/python3 "$here/checkmesh_table.py" summarise "$out" "$tets" > "$out/checkmesh.json"
+/usr/bin/python3 "$here/checkmesh_table.py" render "$out/checkmesh.json" > "$out/checkmesh.md"
+echo "summary in $out/checkmesh.json, table in $out/checkmesh.md"
+if [[ "$paper" == --paper ]]; then
+  cp "$out/checkmesh.json" "$here/../paper/data/checkmesh.json"
+  cp "$out/checkmesh.md" "$here/../paper/tables/checkmesh.md"
+fi

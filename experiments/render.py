@@ -543,7 +543,8 @@ def fill_markers(readme, tables_dir):
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--out", default="results")
+    ap.add_argument("--out", default=os.path.join(os.path.dirname(HERE), "build", "results"),
+                    help="the results directory run.py wrote (default build/results)")
     ap.add_argument("--paper", help="copy figures and tables here and fill README markers")
     ap.add_argument("--no-figures", action="store_true")
     ap.add_argument("--figure-size", type=int, help="target tets of the figures "

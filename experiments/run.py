@@ -360,7 +360,8 @@ def summary_line(rec):
 def parse_args(argv):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--polydual", default=os.path.join(REPO, "build", "polydual"))
-    ap.add_argument("--out", default="results")
+    ap.add_argument("--out", default=os.path.join(REPO, "build", "results"),
+                    help="results directory (records, meshes, tables, figures; default build/results)")
     ap.add_argument("--smoke", action="store_true",
                     help="~2k tets, fast variants only, no paper/ update (for CI)")
     ap.add_argument("--sizes", help="comma-separated target tet counts "

@@ -134,7 +134,7 @@ def render_all(args):
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    tc.add_common_args(ap, "results_split", "20000", DOMAINS, VARIANTS)
+    tc.add_common_args(ap, os.path.join(REPO, "build", "results_split"), "20000", DOMAINS, VARIANTS)
     ap.add_argument("--no-figures", action="store_true")
     ap.add_argument("--paper", action="store_true", help="write paper/split_tables.md and its figures")
     args = tc.parse_common_args(ap, argv, VARIANTS)

@@ -337,7 +337,7 @@ def render(args):
 def add_common_args(ap, out, sizes, domains, variants, variants_help=None):
     """The options every compare script shares (variants: the default list)."""
     ap.add_argument("--polydual", default=os.path.join(REPO, "build", "polydual"))
-    ap.add_argument("--out", default=out)
+    ap.add_argument("--out", default=out, help="results directory (default under build/)")
     ap.add_argument("--sizes", default=sizes)
     ap.add_argument("--domains", default=",".join(domains))
     ap.add_argument("--variants", default=",".join(variants), help=variants_help)
@@ -359,7 +359,7 @@ def parse_common_args(ap, argv, variants):
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    add_common_args(ap, "results_tetopt", "20000,100000", DOMAINS, DEFAULT_VARIANTS,
+    add_common_args(ap, os.path.join(REPO, "build", "results_tetopt"), "20000,100000", DOMAINS, DEFAULT_VARIANTS,
                     "default: all but tetopt_global and the planarity_* variants (add them by name)")
     ap.add_argument("--paper", action="store_true", help="write paper/tetopt_tables.md")
     args = parse_common_args(ap, argv, VARIANTS)

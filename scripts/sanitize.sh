@@ -26,5 +26,12 @@ echo "sanitizer build: ok (log in $log)"
 export ASAN_OPTIONS="halt_on_error=1:abort_on_error=1:detect_leaks=1:check_initialization_order=1:strict_init_order=1:detect_stack_use_after_return=0"
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:report_error_type=1"
 export LSAN_OPTIONS="print_suppressions=0"
+# The CGAL Mesh_3 generators are not built here (they make test input, they
+# are not code under test): the test that runs one uses the Release build's,
+# so that it runs under POLYDUAL_REQUIRE_TOOLS=1 too.
+gen="$root/build/tests/meshgen/labelled_image_medit"
+if [[ -z "${POLYDUAL_LABELLED_IMAGE_MEDIT:-}" && -x "$gen" ]]; then
+  export POLYDUAL_LABELLED_IMAGE_MEDIT="$gen"
+fi
 cd "$work"
 ctest --output-on-failure -j"${JOBS:-2}" --timeout 1800 -LE slow

@@ -5,6 +5,9 @@
 # (scripts/sanitize.sh; any sanitizer finding fails the run).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# The tools are installed below, so a test that finds one missing fails
+# instead of skipping (tests/require_tool.h, tests/corpus/run_corpus.py).
+export POLYDUAL_REQUIRE_TOOLS=1
 scripts/install-deps.sh
 scripts/build.sh
 (cd build && ctest --output-on-failure -j"${JOBS:-2}" --timeout 1800)

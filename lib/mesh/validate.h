@@ -1,7 +1,7 @@
 // Invariant checks on a PolyMesh (design §10), used by tests, by the CLI's
 // `check` and between stages. Combinatorial checks are exact by nature; the
 // volumes are double sums compared with a relative tolerance (the exact
-// identity is checked with rationals in tests/dual_test.cpp).
+// identity is checked with rationals in tests/dual/dual_test.cpp).
 #pragma once
 #include <cstdint>
 #include <map>

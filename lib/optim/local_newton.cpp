@@ -496,7 +496,7 @@ constexpr double kPolishTol = 1e-5;
 // mean + kPolishFullModelShare x (max - mean). The first smoothing sweep
 // uses the corrected model everywhere: after the lagged untangling sweep it
 // starts from a mild state, and the few cells it leaves badly shaped are
-// what the later full-model visits and the polish repair (bench/README.md,
+// what the later full-model visits and the polish repair (bench/HISTORY.md,
 // "The full model where it pays").
 constexpr double kFullModelRatio = 1.3;
 constexpr double kPolishFullModelShare = 0.8;

@@ -85,9 +85,9 @@ struct OptimParams {
   // and of their point-sharing neighbours,
   // while the worst quality drops by more than 1e-5 (relative); they count
   // toward max_iter and are reported as one iteration. Default 8 (each at a
-  // few percent of a full sweep's cost; 40 until the min-max descent below
-  // ended the polish: cube 100k ran 15 polish sweeps then, for a max within
-  // 0.01 % of what 8 reach before the descent); 0: no polish (the paper).
+  // few percent of a full sweep's cost; with the min-max descent below after
+  // it, a cap of 40 let cube 100k run 15 polish sweeps for a max within
+  // 0.01 % of what 8 reach); 0: no polish (the paper).
   int polish_sweeps = 8;
   double polish_share = 0.9;
   // Local, at the end of the polish (when it ran): at most worst_rounds rounds

@@ -11,7 +11,7 @@
 //   delta(V)  = V0 / (1 + c exp(V / V0))              (paper eq. 3, scaled by V0)
 // The extracted paper text prints A with "e3 x e2", L with "e1" three times and
 // kappa_mod without the square root; proofs/quality.md records the repairs and
-// the limit checks that pin them (tests/quality_test.cpp).
+// the limit checks that pin them (tests/quality/quality_test.cpp).
 #pragma once
 #include <ceres/jet.h>
 
@@ -106,7 +106,7 @@ inline double corner_kappa_and_mod(const double e1[3], const double e2[3], const
 }
 
 // kappa_mod and its gradient with respect to e1, e2, e3 (hand-derived adjoint,
-// used by the global gradient; checked against Jets in tests/optim_test.cpp):
+// used by the global gradient; checked against Jets in tests/optim/optim_test.cpp):
 //   d kappa_mod = (L dA + A dL) / (D S) - (kappa_mod / D) D'(V) dV,
 //   S = sqrt(A L), D = V + W, W = sqrt(V^2 + delta^2),
 //   D'(V) = 1 + (V + delta delta'(V)) / W, delta' = -s (1 - s), s = delta / V0.

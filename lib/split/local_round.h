@@ -36,7 +36,7 @@ namespace polydual {
 // m itself is used (no copy; the same scope and cuts): a copy of most of the
 // mesh costs more than it saves. Either way the k-th cell of an active vertex
 // is the k-th cell of that vertex in the whole mesh's dual (proofs/split.md
-// L5; tests/split_local_round_test.cpp).
+// L5; tests/split/split_local_round_test.cpp).
 struct LocalDual {
   SubMesh sub;               // empty when on_whole_mesh
   bool on_whole_mesh = false;

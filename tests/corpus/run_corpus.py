@@ -20,7 +20,9 @@ Per mesh:
     printed as an improvement, and a mesh that now meets the bound says so.
 The table goes to WORK/corpus_table.json (read by corpus_table.py). A mesh
 whose tool is missing is skipped with a message; exit 77 (ctest's skip) when
-every mesh was skipped, 1 when any check failed.
+every mesh was skipped, 1 when any check failed. With POLYDUAL_REQUIRE_TOOLS=1
+in the environment (scripts/test.sh, CI: every tool is installed) a skipped
+mesh is a failure, as in the unit tests (tests/require_tool.h).
 
   run_corpus.py --bin build/polydual --work DIR [--labelled_image_medit BIN]
                 [--polyhedral_features_medit BIN] [--only NAME ...]
@@ -250,6 +252,9 @@ def main():
         try:
             path = corpus.make(name, a.work, tools)
         except corpus.Skip as e:
+            if os.environ.get("POLYDUAL_REQUIRE_TOOLS") == "1":
+                failures.append(f"{name}: a tool is missing (POLYDUAL_REQUIRE_TOOLS=1): {e}")
+                continue
             print(f"corpus: SKIP {name}: {e}", flush=True)
             skipped.append(name)
             continue

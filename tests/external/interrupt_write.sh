@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Slow check (issue "Real meshes from other tools", item 4): a SIGTERM or
+# Slow check of the output safety (README, "The command": interrupts end the run): a SIGTERM or
 # SIGINT while `polydual convert` writes a large VTU or an OpenFOAM case leaves
 # no output (or the previous one, byte for byte) and no temporary, and the
 # command exits with 128 + signal saying "interrupted"; a full disk gives the

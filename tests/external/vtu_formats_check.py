@@ -1,6 +1,6 @@
 """Checks that VTK itself reads every format write_vtu_poly writes, and reads
 the same mesh from each (python3-vtk9, run by /usr/bin/python3; called by
-tests/io_vtu_vtk_test.cpp).
+tests/io/io_vtu_vtk_test.cpp).
 
 usage: vtu_formats_check.py REFERENCE.vtu OTHER.vtu...
 
