@@ -15,6 +15,7 @@
 #include <string>
 #include <unistd.h>
 
+#include "require_tool.h"
 #include "classify/classify.h"
 #include "io/foam_writer.h"
 #include "io/read_tet_mesh.h"
@@ -109,7 +110,7 @@ std::set<std::string> entries(const fs::path& file) {
 class ModelNamesThroughMsh : public testing::TestWithParam<const char*> {};
 
 TEST_P(ModelNamesThroughMsh, NamePatchesAndZones) {
-  if (!have("gmsh")) GTEST_SKIP() << "gmsh is not installed";
+  if (!have("gmsh")) POLYDUAL_MISSING_TOOL("gmsh is not installed (Debian package gmsh)");
   const fs::path dir = scratch() / GetParam();
   fs::create_directories(dir);
   const std::string msh = gmsh_model(dir, GetParam(), true);
@@ -152,7 +153,7 @@ INSTANTIATE_TEST_SUITE_P(Gmsh, ModelNamesThroughMsh, testing::Values("msh22", "m
 // material_<tag> zones, and the same bytes as a write with no names at all;
 // the VTU has no name arrays.
 TEST(ModelNames, MeshWithoutNamesIsUnchanged) {
-  if (!have("gmsh")) GTEST_SKIP() << "gmsh is not installed";
+  if (!have("gmsh")) POLYDUAL_MISSING_TOOL("gmsh is not installed (Debian package gmsh)");
   const fs::path dir = scratch() / "plain";
   fs::create_directories(dir);
   const std::string msh = gmsh_model(dir, "msh41", false);
@@ -170,7 +171,7 @@ TEST(ModelNames, MeshWithoutNamesIsUnchanged) {
 // both become "a_b" (the second "a_b_2"), "2nd" "_2nd", "x/y" "x_y"; two
 // faces of one name share a patch.
 TEST(ModelNames, SanitisedUniqueWords) {
-  if (!have("gmsh")) GTEST_SKIP() << "gmsh is not installed";
+  if (!have("gmsh")) POLYDUAL_MISSING_TOOL("gmsh is not installed (Debian package gmsh)");
   const fs::path dir = scratch() / "words";
   fs::create_directories(dir);
   const ConvertResult r = convert_file(gmsh_model(dir, "msh41", false), (dir / "m.vtu").string(), PolyFormat::Vtu,
@@ -193,7 +194,7 @@ TEST(ModelNames, SanitisedUniqueWords) {
 // A volume in two physical groups (msh 4.1 lists both tags on the entity):
 // its model region carries both groups' tags, and the first name.
 TEST(ModelNames, EntityCarriesAllItsPhysicalGroups) {
-  if (!have("gmsh")) GTEST_SKIP() << "gmsh is not installed";
+  if (!have("gmsh")) POLYDUAL_MISSING_TOOL("gmsh is not installed (Debian package gmsh)");
   const fs::path dir = scratch() / "two_groups";
   fs::create_directories(dir);
   const TetSoup soup = read_tet_mesh(gmsh_model(dir, "msh41", true, "Physical Volume(\"hard\") = {steel()};\n"));

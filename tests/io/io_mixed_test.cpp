@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "require_tool.h"
 #include "classify/classify.h"
 #include "classify/classify_primal.h"
 #include "core/error.h"
@@ -90,7 +91,7 @@ const char* kHexPyramidTet =
 }  // namespace
 
 TEST(IoMixed, GmshExtrudedPrismLayerReachesThePrimal) {
-  if (!have_gmsh()) GTEST_SKIP() << "gmsh is not installed";
+  if (!have_gmsh()) POLYDUAL_MISSING_TOOL("gmsh is not installed (Debian package gmsh)");
   for (const std::string options : {"-format msh41", "-format msh22", "-format msh41 -bin", "-format msh22 -bin"}) {
     SCOPED_TRACE(options);
     const std::string path = gmsh_mesh("prisms", kExtruded, options);
@@ -108,7 +109,7 @@ TEST(IoMixed, GmshExtrudedPrismLayerReachesThePrimal) {
 }
 
 TEST(IoMixed, GmshTransfiniteHexBoxAndHexPyramidTetBlock) {
-  if (!have_gmsh()) GTEST_SKIP() << "gmsh is not installed";
+  if (!have_gmsh()) POLYDUAL_MISSING_TOOL("gmsh is not installed (Debian package gmsh)");
   const TetSoup hexes = read_tet_mesh(gmsh_mesh("hexbox", kHexBox, "-format msh41"));
   EXPECT_EQ(count(hexes, CellType::Hex), 27u);
   EXPECT_EQ(hexes.quads.size(), 54u);  // 6 sides of 3 x 3 boundary quadrangles
@@ -145,7 +146,7 @@ TEST(IoMixed, GmshTransfiniteHexBoxAndHexPyramidTetBlock) {
 }
 
 TEST(IoMixed, GmshSurfaceNetworkIsASurfacePrimal) {
-  if (!have_gmsh()) GTEST_SKIP() << "gmsh is not installed";
+  if (!have_gmsh()) POLYDUAL_MISSING_TOOL("gmsh is not installed (Debian package gmsh)");
   const std::string geo =
       "SetFactory(\"OpenCASCADE\");\nRectangle(1) = {0,0,0,1,1};\nRectangle(2) = {0.5,-0.5,-0.5,1,1};\n"
       "Rotate {{1,0,0},{0.5,0,0},Pi/2} { Surface{2}; }\n"
