@@ -16,6 +16,8 @@
 #include "io/output_guard.h"
 #include "io/format_registry.h"
 #include "io/read_tet_mesh.h"
+#include "quality/metrics.h"
+#include "quality/stencil.h"
 #include "split/coarsen.h"
 #include "split/cuts.h"
 #include "split/local_round.h"
@@ -364,24 +366,51 @@ std::vector<BadCell> bad_cells(const SplitState& st, const PolyMesh& mesh, const
   return bad;
 }
 
+// Per vertex (internal numbering) cut whole in `cuts`, the worst quality of
+// its cells in `mesh` (others 0); `bad` receives, as (vertex, side), the
+// valid cells of whole vertices above max(bound, worst[v]) when worst is given.
+std::vector<double> whole_cell_quality(const SplitState& st, const VertexCuts& cuts, const PolyMesh& mesh,
+                                       const CheckResult& check, Metric metric, const std::vector<double>* worst,
+                                       double bound, std::vector<BadCell>* bad) {
+  std::vector<double> q(st.whole.size(), 0.0);
+  const MeshStencil s = build_stencil(mesh);
+  std::uint32_t rank = 0;
+  for (std::size_t c = 0; c < mesh.num_cells(); ++c) {
+    rank = c > 0 && mesh.cell_primal[c] == mesh.cell_primal[c - 1] ? rank + 1 : 0;
+    const VertexId v = st.internal_of_input[mesh.cell_primal[c].idx];
+    if (!cuts.is_whole(v) || !check.verdicts[c].valid) continue;
+    const double cq = cell_quality(s, std::uint32_t(c), metric, mesh.points);
+    q[v.idx] = std::max(q[v.idx], cq);
+    if (worst && bad && cq > std::max(bound, (*worst)[v.idx])) bad->push_back({v, rank});
+  }
+  return q;
+}
+
 // Merges the barycentric corners of the whole vertices back while every cell
 // stays valid (split/coarsen.h). A trial is the dual rebuilt with the trial's
 // cuts, every point at its position in the last valid mesh (the base: r's at
 // first; merging keeps every point, dual/cut_topology.h kCentre), star-tested
-// exactly (cells equal to one of the base keep their verdict). A trial with
-// no invalid cell becomes the base; the last base replaces r's mesh, and the
-// split's final optimisation then smooths it. (Untangling each trial before
-// judging it kept 7-30 % more merges but cost up to 19 s on a 13k-tet TetGen
-// mesh against 0.5 s: measured.)
+// exactly (cells equal to one of the base keep their verdict). A merged cell
+// whose quality is above both kMergeQualityBound and the worst of its
+// vertex's corners counts as a failure too (floating point: it only steers
+// the merging), so merging does not make a vertex's worst cell worse. A
+// trial with no failure becomes the base; the last base replaces r's mesh,
+// and the split's final optimisation then smooths it. (Untangling each trial
+// before judging it kept 7-30 % more merges but cost up to 19 s on a
+// 13k-tet TetGen mesh against 0.5 s: measured.)
 Json coarsen_split(ConvertResult& r, SplitState& st, const PipelineParams& params) {
   const Stopwatch clock;
   VertexCuts base_cuts = st.cuts;
+  const Metric metric = params.optim.metric;
+  const std::vector<double> worst =
+      whole_cell_quality(st, st.cuts, r.mesh, r.check, metric, nullptr, kMergeQualityBound, nullptr);
   auto evaluate = [&](const VertexCuts& cuts) {
     PolyMesh fresh = build_dual(r.primal, params.dual, nullptr, &cuts);
     const std::vector<PointId> from_old = warm_start_by_rank(fresh, r.mesh);
     CheckResult check = recheck_mesh(fresh, r.mesh, r.check, from_old);
     std::vector<BadCell> bad = bad_cells(st, fresh, check);
-    if (check.invalid_cells == 0) {
+    whole_cell_quality(st, cuts, fresh, check, metric, &worst, kMergeQualityBound, &bad);
+    if (bad.empty()) {
       r.mesh = std::move(fresh);
       r.check = std::move(check);
       base_cuts = cuts;

@@ -48,11 +48,16 @@ struct BadCell {
   VertexId v;
   std::uint32_t side;
 };
-// Given cuts, the cells that the exact star test of the dual built with
-// those cuts finds invalid.
+// Given cuts, the cells of the dual built with those cuts that fail: found
+// invalid by the exact star test (or rejected by the caller's other
+// criteria, such as a quality bound).
 using CutsEvaluator = std::function<std::vector<BadCell>(const VertexCuts&)>;
 
 constexpr int kCoarsenMaxPasses = 32;
+// A merged cell above this kappa/3 (and above the worst corner of its vertex)
+// is taken back like an invalid one: the worst-cell target the optimiser
+// reports against (OptimReport::cells_above_bound).
+constexpr double kMergeQualityBound = 10.0;
 constexpr int kMaxFailures = 4;
 
 // The coarsest cuts found: free_edge merged with the label cuts of the
