@@ -201,7 +201,7 @@ struct OptimReport {
 // from a seed or invalid cell (a re-optimisation after a local change, e.g.
 // the split: the rest of the mesh stays as it was).
 // known (empty: computed here): the exact star verdicts of mesh as it is, one
-// per cell (check_mesh's, pipeline/check.h), so that the optimiser does not
+// per cell (check_mesh's, quality/check_result.h), so that the optimiser does not
 // test every cell again before it starts.
 OptimReport optimize(PolyMesh& mesh, const ClassifiedTetMesh* primal, const OptimParams& params,
                      const ProgressFn& progress = {}, std::span<const char> seed_cells = {},
