@@ -530,4 +530,12 @@ void TetMeshBuilder::number_edges(ClassifiedTetMesh& m, const LowVertexBuckets& 
             [](EdgeId x, EdgeId y) { return x.idx < y.idx; });
 }
 
+std::vector<VertexId> internal_of_input(const ClassifiedTetMesh& m) {
+  std::uint32_t n = 0;
+  for (std::size_t v = 0; v < m.num_vertices(); ++v) n = std::max(n, m.input_vertex(VertexId(v)) + 1);
+  std::vector<VertexId> out(n, VertexId::invalid());
+  for (std::size_t v = 0; v < m.num_vertices(); ++v) out[m.input_vertex(VertexId(v))] = VertexId(v);
+  return out;
+}
+
 }  // namespace polydual

@@ -381,4 +381,8 @@ class TetMeshBuilder {
   static void find_multi_chain_edges(ClassifiedTetMesh& m);
 };
 
+// The inverse of input_vertex: per input vertex index, the internal vertex
+// (invalid: an input point that is in no tet).
+std::vector<VertexId> internal_of_input(const ClassifiedTetMesh& m);
+
 }  // namespace polydual
