@@ -40,7 +40,7 @@ class VertexNewton {
 
   // Up to params.newton_steps Newton steps at p; returns the number accepted and
   // the total displacement in *moved.
-  int optimise(PointId p, double* moved) {
+  int optimise(PointId p, const SweepMode& mode, double* moved) {
     const auto& prm = ctx_.params;
     Point3* pts = ctx_.mesh.points.data();
     const LocalObjective obj{ctx_.stencil, pts, ctx_.V0.data(), prm.metric, prm.c, p};
@@ -64,7 +64,7 @@ class VertexNewton {
         for (int i = 0; i < k; ++i) x += t[i] * B[i];
         return x;
       };
-      const OptimParams::Derivatives der = der_ = model_of(cells);
+      const OptimParams::Derivatives der = der_ = model_of(cells, mode);
       const bool corrected = der == OptimParams::Derivatives::Corrected;
       const bool lagged = der == OptimParams::Derivatives::Lagged || corrected;
       if (lagged)
@@ -96,7 +96,7 @@ class VertexNewton {
       if (-slope <= 1e-14 * std::fabs(f0)) break;  // Newton decrement ~ 0: converged
       std::uint32_t prim = BoundaryConstraints::kNone;
       Point3 xt = o;
-      if (!damped_step(p, o, k, d, f0, slope, x_of, eval, cells, xt, prim)) break;
+      if (!damped_step(p, o, k, d, f0, slope, mode.omega, x_of, eval, cells, xt, prim)) break;
       if (k < 3) ctx_.bc->commit(p, prim);  // re-centre the parametric space
       ctx_.gates_commit(cells, q_);
       for (std::uint32_t c : cells)
@@ -139,15 +139,16 @@ class VertexNewton {
 
   // Damping (paper 3.3 / [9]): halve until Armijo holds AND every incident
   // cell that was valid is still valid (exact star test). Over-relaxation
-  // (ctx_.omega > 1 in smoothing sweeps): omega x the Newton step is tried
+  // (omega > 1 in smoothing sweeps): omega x the Newton step is tried
   // first, then the undamped step and its halvings. On success p is at xt
   // (prim: its boundary primitive there); otherwise p is back at o.
   template <class X, class E>
-  bool damped_step(PointId p, const Point3& o, int k, const Vec& d, double f0, double slope, const X& x_of,
-                   const E& eval, std::span<const std::uint32_t> cells, Point3& xt, std::uint32_t& prim) {
+  bool damped_step(PointId p, const Point3& o, int k, const Vec& d, double f0, double slope, double omega,
+                   const X& x_of, const E& eval, std::span<const std::uint32_t> cells, Point3& xt,
+                   std::uint32_t& prim) {
     Point3* pts = ctx_.mesh.points.data();
-    const bool over = ctx_.omega > 1.0;
-    double alpha = over ? ctx_.omega : 1.0;
+    const bool over = omega > 1.0;
+    double alpha = over ? omega : 1.0;
     bool ok = false;
     for (int hv = over ? -1 : 0; hv <= ctx_.params.max_halvings && !ok; ++hv, alpha = hv <= 0 ? 1.0 : alpha * 0.5) {
       double t[3] = {0, 0, 0};
@@ -170,21 +171,21 @@ class VertexNewton {
 
  private:
   // The sweep's model, except that a point of a cell whose quality (at the last
-  // record) is above ctx_.full_model_above gets the full analytic model: the
+  // record) is above mode.full_model_above gets the full analytic model: the
   // corrected lagged model is first-order in the centres, which does not
   // recover poorly shaped cells (on a mesh just untangled its max quality
   // oscillates), while the full model does; such points are few.
-  OptimParams::Derivatives model_of(std::span<const std::uint32_t> cells) const {
+  OptimParams::Derivatives model_of(std::span<const std::uint32_t> cells, const SweepMode& mode) const {
     const OptimParams::Derivatives d = ctx_.params.derivatives;
     if (d != OptimParams::Derivatives::Corrected) return d;
-    if (ctx_.untangling == Context::Untangling::Lagged) return OptimParams::Derivatives::Lagged;
-    if (ctx_.untangling == Context::Untangling::FullWhereInvalid) {
+    if (mode.untangling == SweepMode::Untangling::Lagged) return OptimParams::Derivatives::Lagged;
+    if (mode.untangling == SweepMode::Untangling::FullWhereInvalid) {
       for (std::uint32_t c : cells)
         if (!ctx_.cell_valid[c]) return OptimParams::Derivatives::Analytic;
       return OptimParams::Derivatives::Lagged;
     }
     for (std::uint32_t c : cells)
-      if (!(ctx_.cell_quality[c] <= ctx_.full_model_above)) return OptimParams::Derivatives::Analytic;
+      if (!(ctx_.cell_quality[c] <= mode.full_model_above)) return OptimParams::Derivatives::Analytic;
     return d;
   }
 
@@ -431,12 +432,13 @@ Passes colour_passes(Context& ctx, std::vector<std::uint32_t>& block, const std:
 }
 
 // One sweep: the surface pass then the volume pass, each colour in parallel,
-// visiting the points for which active(p) holds. A point whose accepted moves
+// visiting the points for which active(p) holds, each as `mode` says. A point whose accepted moves
 // add up to more than settle_move x its local length stamps its cells with
 // `sweep` in last_change. Visits and accepted moves go to counts.
 template <class Active>
 void sweep_points(Context& ctx, const Passes& passes, tbb::enumerable_thread_specific<VertexNewton>& solvers,
-                  int sweep, std::vector<int>& last_change, const Active& active, IterationRecord& counts) {
+                  const SweepMode& mode, int sweep, std::vector<int>& last_change, const Active& active,
+                  IterationRecord& counts) {
   std::atomic<std::uint64_t> updates{0}, visited{0}, full{0};
   for (const ColourClasses& cc : passes) {
     for (std::size_t col = 0; col + 1 < cc.colour_off.size(); ++col) {
@@ -449,7 +451,7 @@ void sweep_points(Context& ctx, const Passes& passes, tbb::enumerable_thread_spe
           if (!active(p)) continue;
           ++n_vis;
           double moved = 0;
-          const int n = solver.optimise(p, &moved);
+          const int n = solver.optimise(p, mode, &moved);
           n_upd += static_cast<std::uint64_t>(n);
           n_full += solver.used_full_model();
           if (n == 0) continue;
@@ -524,7 +526,7 @@ constexpr double kFullModelRatio = 1.3;
 constexpr double kPolishFullModelShare = 0.8;
 
 void polish_worst(Context& ctx, const Passes& passes, tbb::enumerable_thread_specific<VertexNewton>& solvers,
-                  int sweep, std::vector<int>& last_change) {
+                  SweepMode mode, int sweep, std::vector<int>& last_change) {
   const auto& prm = ctx.params;
   const double mean = ctx.last_stats.mean;
   std::vector<char> bad(ctx.mesh.num_cells(), 0);
@@ -556,9 +558,9 @@ void polish_worst(Context& ctx, const Passes& passes, tbb::enumerable_thread_spe
       return false;
     };
     IterationRecord one;
-    ctx.untangling = Context::Untangling::None;
-    ctx.full_model_above = mean + kPolishFullModelShare * (worst - mean);
-    sweep_points(ctx, passes, solvers, sweep + ++k, last_change, active, one);
+    mode.untangling = SweepMode::Untangling::None;
+    mode.full_model_above = mean + kPolishFullModelShare * (worst - mean);
+    sweep_points(ctx, passes, solvers, mode, sweep + ++k, last_change, active, one);
     counts.visited += one.visited;
     counts.updates += one.updates;
     counts.full_model += one.full_model;
@@ -689,6 +691,7 @@ class LocalRun {
   std::optional<Passes> whole_;
   std::vector<std::uint32_t> block_;  // colour_points' scratch
   std::vector<int> last_change_;      // per cell, the last sweep that moved one of its points
+  SweepMode mode_;                    // of the current sweep (the polish starts from the last one's)
   // Method::Untangle: only untangling sweeps, as many as max_iter allows.
   const bool untangle_only_;
   int untangle_left_;
@@ -735,12 +738,12 @@ void LocalRun::bound_seeded_run() {
     if (ctx_.seed_cells[c]) last_change_[c] = 0;
 }
 
-// The sweep's relaxation and derivative model (Context's per-sweep fields).
+// The sweep's relaxation and derivative model (mode_, handed to every visit).
 void LocalRun::set_sweep_mode(bool untangling, int sweep) {
   // Untangling sweeps: no over-relaxation, and the full model instead of the
   // corrected lagged one (around a tangled cell the centres' motion is what
   // decides the regularised volumes; the sweeps visit few points).
-  ctx_.omega = untangling ? 1.0 : prm_.relaxation;
+  mode_.omega = untangling ? 1.0 : prm_.relaxation;
   // The first untangling sweep (the points of every invalid cell) on the
   // plain lagged model: with the centres held, a point of a tangled cell is
   // not dragged to where the regularised volumes of the tangled cell drop
@@ -753,10 +756,10 @@ void LocalRun::set_sweep_mode(bool untangling, int sweep) {
   // at 100k: the same invalid counts per sweep, 40-60% of the visits on the
   // full model, the later sweeps ~25% faster).
   // The first smoothing sweep then uses no full model (kFullModelRatio).
-  ctx_.untangling = !untangling ? Context::Untangling::None
-                    : sweep == 1 ? Context::Untangling::Lagged
-                                 : Context::Untangling::FullWhereInvalid;
-  ctx_.full_model_above =
+  mode_.untangling = !untangling ? SweepMode::Untangling::None
+                     : sweep == 1 ? SweepMode::Untangling::Lagged
+                                  : SweepMode::Untangling::FullWhereInvalid;
+  mode_.full_model_above =
       first_smoothing_ ? std::numeric_limits<double>::infinity() : kFullModelRatio * ctx_.last_stats.mean;
   first_smoothing_ = first_smoothing_ && untangling;
 }
@@ -789,9 +792,9 @@ const IterationRecord& LocalRun::run_sweep(int sweep, bool untangling) {
         untangling_candidates(ctx_, first_untangling, focus_, last_change_, sweep, near_invalid_);
     const Passes sub = colour_passes(ctx_, block_, &cand);
     ctx_.lap("colouring");
-    sweep_points(ctx_, sub, solvers_, sweep, last_change_, active, counts);
+    sweep_points(ctx_, sub, solvers_, mode_, sweep, last_change_, active, counts);
   } else {
-    sweep_points(ctx_, whole_passes(), solvers_, sweep, last_change_, active, counts);
+    sweep_points(ctx_, whole_passes(), solvers_, mode_, sweep, last_change_, active, counts);
   }
   return record_sweep(ctx_, sweep, counts);
 }
@@ -822,7 +825,7 @@ bool LocalRun::untangling_ends_run(const IterationRecord& rec) {
 void LocalRun::finish(int sweep) {
   if (untangle_only_) return;
   if (prm_.polish_sweeps > 0 && prm_.max_iter > 0 && ctx_.report->iterations.back().invalid == 0)
-    polish_worst(ctx_, whole_passes(), solvers_, sweep, last_change_);
+    polish_worst(ctx_, whole_passes(), solvers_, mode_, sweep, last_change_);
   if (prm_.foam_gate && prm_.max_iter > 0 && ctx_.report->iterations.back().invalid == 0) {
     ctx_.lap("iterations");
     const IterationRecord r = repair_foam(ctx_);
