@@ -58,7 +58,7 @@ struct Context {
   std::vector<Vec3> grad_R, grad_F;
 
   // known: the cells' exact star verdicts (empty, or not one per cell: tested here).
-  Context(PolyMesh& m, const ClassifiedTetMesh* primal, const OptimParams& p, std::span<const CellVerdict> known = {});
+  Context(PolyMesh& m, const ModelFacets* facets, const OptimParams& p, std::span<const CellVerdict> known = {});
   double seconds() const;
   // Adds the seconds since the last lap (or the start) to phase `name` of the
   // report (report->phases, or the setup's until the report is attached).

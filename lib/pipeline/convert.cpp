@@ -109,8 +109,9 @@ void warn_lost_volume(ConvertResult& r) {
 // The split stage (split/split.h) after the first dual, its optimisation
 // and check: the optimiser reaches the split as a callback (the rounds
 // untangle only; the mesh kept gets the chosen method, near its cuts unless
-// the method is global).
-void run_split_stage(ConvertResult& r, SplitState& st, const PipelineParams& params, const ConvertHooks& hooks) {
+// the method is global). facets: model_facets(r.primal) when there is an optimiser.
+void run_split_stage(ConvertResult& r, SplitState& st, const ModelFacets& facets, const PipelineParams& params,
+                     const ConvertHooks& hooks) {
   SplitHooks split_hooks;
   split_hooks.progress = hooks.progress;
   if (params.optim.method != OptimParams::Method::None)
@@ -119,10 +120,10 @@ void run_split_stage(ConvertResult& r, SplitState& st, const PipelineParams& par
       if (untangle_only) {
         OptimParams untangle = params.optim;
         untangle.method = OptimParams::Method::Untangle;
-        return optimize(mesh, &r.primal, untangle, {}, seed, verdicts).to_json();
+        return optimize(mesh, &facets, untangle, {}, seed, verdicts).to_json();
       }
       const bool local = params.optim.method != OptimParams::Method::Global;
-      return optimize(mesh, &r.primal, params.optim, hooks.progress, local ? seed : std::span<const char>(), verdicts)
+      return optimize(mesh, &facets, params.optim, hooks.progress, local ? seed : std::span<const char>(), verdicts)
           .to_json();
     };
   run_stage(r.report, hooks, "split", [&](Json& stats) {
@@ -207,9 +208,11 @@ void run_pipeline(ConvertResult& r, const TetSoup& soup, const PipelineParams& p
     return c;
   });
   rep.invalid_before = r.check.invalid_cells;
+  ModelFacets facets;  // what the optimiser reads of the primal, made once
   if (optimise) {
     run_stage(rep, hooks, "optimize", [&](Json& stats) {
-      stats = optimize(r.mesh, &r.primal, params.optim, hooks.progress, {}, r.check.verdicts).to_json();
+      facets = model_facets(r.primal);
+      stats = optimize(r.mesh, &facets, params.optim, hooks.progress, {}, r.check.verdicts).to_json();
       return 0;
     });
     // With the split, check_split validates the mesh that is returned.
@@ -219,7 +222,7 @@ void run_pipeline(ConvertResult& r, const TetSoup& soup, const PipelineParams& p
       return c;
     });
   }
-  if (params.split.enabled) run_split_stage(r, st, params, hooks);
+  if (params.split.enabled) run_split_stage(r, st, facets, params, hooks);
   if (params.dual.boundary == BoundaryMode::Caps) warn_lost_volume(r);
   rep.invalid_after = r.check.invalid_cells;
   if (params.split.require_valid) require_valid(r);
@@ -298,7 +301,9 @@ OptimizeResult optimize_mesh(PolyMesh& mesh, const ClassifiedTetMesh* primal, co
                              const ProgressFn& progress) {
   params.validate();
   OptimizeResult r;
-  r.optim = optimize(mesh, primal, params, progress);
+  ModelFacets facets;
+  if (primal) facets = model_facets(*primal);
+  r.optim = optimize(mesh, primal ? &facets : nullptr, params, progress);
   r.check = check_mesh(mesh, primal);
   return r;
 }
