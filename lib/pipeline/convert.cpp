@@ -186,7 +186,12 @@ void run_pipeline(ConvertResult& r, const TetSoup& soup, const PipelineParams& p
   });
   if (release) *release = TetSoup{};
   if (params.tetopt.enabled)
-    run_stage(rep, hooks, "optimize_tets", [&](Json& stats) { stats = optimize_tets(r.primal, params.tetopt).to_json(); return 0; });
+    r.primal = run_stage(rep, hooks, "optimize_tets", [&](Json& stats) {
+      TetOptReport report;
+      ClassifiedTetMesh moved = optimize_tets(r.primal, params.tetopt, &report);
+      stats = report.to_json();
+      return moved;
+    });
   // What the classification completed (an incomplete given classification).
   for (const std::string& w : r.primal.classification_warnings()) r.warnings.push_back(w);
   SplitState st;
