@@ -272,7 +272,8 @@ void BM_Untangle(benchmark::State& st, Domain d, std::size_t n) {
     const std::vector<CellVerdict> verdicts = star_shaped_verdicts(pm);
     best_budget = std::min(best_budget, seconds_since(t0));
     const auto t1 = Clock::now();
-    rep = optimize(pm, &m, p, {}, {}, verdicts);
+    const ModelFacets facets = model_facets(m);
+    rep = optimize(pm, &facets, p, {}, {}, verdicts);
     best_opt = std::min(best_opt, seconds_since(t1));
     benchmark::DoNotOptimize(pm.points.data());
   }

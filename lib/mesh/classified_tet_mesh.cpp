@@ -530,4 +530,21 @@ void TetMeshBuilder::number_edges(ClassifiedTetMesh& m, const LowVertexBuckets& 
             [](EdgeId x, EdgeId y) { return x.idx < y.idx; });
 }
 
+ClassifiedTetMesh ClassifiedTetMesh::with_points(std::vector<Point3> points) const {
+  if (points.size() != num_vertices())
+    throw UsageError("with_points: " + std::to_string(points.size()) + " points for a mesh of " +
+                     std::to_string(num_vertices()) + " vertices");
+  ClassifiedTetMesh out = *this;
+  out.points_ = std::move(points);
+  return out;
+}
+
+std::vector<VertexId> internal_of_input(const ClassifiedTetMesh& m) {
+  std::uint32_t n = 0;
+  for (std::size_t v = 0; v < m.num_vertices(); ++v) n = std::max(n, m.input_vertex(VertexId(v)) + 1);
+  std::vector<VertexId> out(n, VertexId::invalid());
+  for (std::size_t v = 0; v < m.num_vertices(); ++v) out[m.input_vertex(VertexId(v))] = VertexId(v);
+  return out;
+}
+
 }  // namespace polydual

@@ -316,6 +316,14 @@ class ClassifiedTetMesh {
   // and why. Empty for a full classification (its surfaces are not split).
   const std::vector<MarkerFeatures>& marker_features() const { return marker_features_; }
 
+  // The one change a classified mesh allows: the same mesh (tets, numbering,
+  // topology, classification) at new coordinates, one per vertex (the tet
+  // pre-optimiser's, optim/tet_optimize.h). The topology does not read the
+  // coordinates, so it is copied, not rebuilt. Whether every tet is still
+  // positively oriented is the caller's exact check. Throws UsageError when
+  // points.size() is not num_vertices().
+  ClassifiedTetMesh with_points(std::vector<Point3> points) const;
+
   // Volume of tet t (double; for statistics only).
   double tet_volume(TetId t) const;
 
@@ -383,5 +391,9 @@ class TetMeshBuilder {
   static void number_edges(ClassifiedTetMesh& m, const LowVertexBuckets& b, std::size_t num_tris);
   static void find_multi_chain_edges(ClassifiedTetMesh& m);
 };
+
+// The inverse of input_vertex: per input vertex index, the internal vertex
+// (invalid: an input point that is in no tet).
+std::vector<VertexId> internal_of_input(const ClassifiedTetMesh& m);
 
 }  // namespace polydual

@@ -46,41 +46,27 @@ Point3 BoundaryConstraints::closest(std::uint32_t i, const Point3& x) const {
   return closest_point_on_triangle(x, verts_[q.v[0].idx], verts_[q.v[1].idx], verts_[q.v[2].idx]);
 }
 
-BoundaryConstraints::BoundaryConstraints(const ClassifiedTetMesh& primal, const PolyMesh& mesh, bool lazy,
-                                         bool keep)
-    : verts_(primal.points()), cls_(mesh.point_class), mesh_(&mesh), lazy_(lazy), keep_(keep) {
-  collect_primitives(primal);
-  if (keep_) collect_face_edges(primal);
+BoundaryConstraints::BoundaryConstraints(const ModelFacets& facets, const PolyMesh& mesh, bool lazy, bool keep)
+    : verts_(facets.points), cls_(mesh.point_class), mesh_(&mesh), lazy_(lazy), keep_(keep) {
+  collect_primitives(facets);
+  if (keep_) collect_face_edges(facets);
   index_vertex_primitives();
   build_grid();
   assign_initial_primitives();
 }
 
 // The facetisation: triangles on model faces, then edges on model edges.
-void BoundaryConstraints::collect_primitives(const ClassifiedTetMesh& primal) {
-  for (std::size_t f = 0; f < primal.num_triangles(); ++f) {
-    const ModelRef r = primal.triangle_class(TriId(f));
-    if (r.dim == 2) prims_.push_back({primal.triangle(TriId(f)), 2, r.tag, static_cast<std::uint32_t>(f)});
-  }
+void BoundaryConstraints::collect_primitives(const ModelFacets& facets) {
+  for (const ModelFacet& t : facets.triangles) prims_.push_back({t.v, 2, t.tag, t.src});
   num_tri_prims_ = static_cast<std::uint32_t>(prims_.size());
-  for (std::size_t e = 0; e < primal.num_edges(); ++e) {
-    const ModelRef r = primal.edge_class(EdgeId(e));
-    if (r.dim == 1) {
-      const auto& ev = primal.edge(EdgeId(e));
-      prims_.push_back({{ev[0], ev[1], VertexId::invalid()}, 1, r.tag, static_cast<std::uint32_t>(e)});
-    }
-  }
+  for (const ModelFacet& s : facets.segments) prims_.push_back({s.v, 1, s.tag, s.src});
 }
 
 // Segments of the edges inside model faces, after the model edges': the
 // segment primitives stay sorted by EdgeId within each kind, and own_primitive
 // looks an edge up in both.
-void BoundaryConstraints::collect_face_edges(const ClassifiedTetMesh& primal) {
-  for (std::size_t e = 0; e < primal.num_edges(); ++e)
-    if (primal.edge_class(EdgeId(e)).dim == 2) {
-      const auto& ev = primal.edge(EdgeId(e));
-      prims_.push_back({{ev[0], ev[1], VertexId::invalid()}, 1, kFaceEdgeTag, static_cast<std::uint32_t>(e)});
-    }
+void BoundaryConstraints::collect_face_edges(const ModelFacets& facets) {
+  for (const ModelFacet& s : facets.face_edges) prims_.push_back({s.v, 1, kFaceEdgeTag, s.src});
 }
 
 std::uint32_t BoundaryConstraints::own_primitive(std::size_t p) const {

@@ -2,8 +2,9 @@
 // on the boundary was constrained to the original facetization by use of a
 // dynamically changing local parametric space"; design §7).
 //
-// The facetisation is the primal mesh's triangles classified on model faces
-// (ModelRef{2,T}) and edges classified on model edges ({1,T}). A dual point
+// The facetisation is the primal's triangles classified on model faces
+// (ModelRef{2,T}) and edges classified on model edges ({1,T}): ModelFacets
+// (mesh/model_facets.h), built once from the primal. A dual point
 // classified {2,T} lives on one triangle of model face T, its "current" triangle;
 // a point {1,T} on one segment of model edge T; {0,*} points are fixed.
 //
@@ -31,7 +32,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "mesh/classified_tet_mesh.h"
+#include "mesh/model_facets.h"
 #include "mesh/poly_mesh.h"
 
 namespace polydual {
@@ -41,15 +42,14 @@ class BoundaryConstraints {
   static constexpr std::uint32_t kNone = UINT32_MAX;
 
   // Finds each boundary point's nearest primitive of its model entity (uniform
-  // grid search). A point whose model entity has no primitive in `primal` is
+  // grid search). A point whose model entity has no primitive in `facets` is
   // fixed (dof 0). Lazy: the search for a point runs at its first ensure()
   // instead, from its position then (the same primitive as the eager search
   // while the point has not moved: an optimiser that moves only the points
   // it visits, and ensures each before its first move, sees the same
   // constraints; --optimize untangle visits a few hundred of ~60k boundary
   // points at 100k tets). `mesh` must outlive a lazy instance.
-  BoundaryConstraints(const ClassifiedTetMesh& primal, const PolyMesh& mesh, bool lazy = false,
-                      bool keep = false);
+  BoundaryConstraints(const ModelFacets& facets, const PolyMesh& mesh, bool lazy = false, bool keep = false);
   // Lazy: finds p's initial primitive if not yet done (from p's current
   // position). Concurrent calls for different points are safe.
   void ensure(PointId p) {
@@ -91,7 +91,7 @@ class BoundaryConstraints {
   static constexpr double kFar = 1e300;  // the bounding box's start (beyond any coordinate)
 
   // The constructor's phases, in order.
-  void collect_primitives(const ClassifiedTetMesh& primal);
+  void collect_primitives(const ModelFacets& facets);
   void index_vertex_primitives();
   void build_grid();
   void assign_initial_primitives();
@@ -109,7 +109,7 @@ class BoundaryConstraints {
   std::uint32_t own_primitive(std::size_t p) const;
   // keep_: adds a segment primitive for every edge on a model face (tag
   // kFaceEdgeTag: no model edge's walk enters it; keep_ walks nowhere).
-  void collect_face_edges(const ClassifiedTetMesh& primal);
+  void collect_face_edges(const ModelFacets& facets);
   static constexpr std::int32_t kFaceEdgeTag = INT32_MIN;
 
   std::vector<Point3> verts_;

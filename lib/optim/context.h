@@ -13,6 +13,22 @@
 
 namespace polydual::optim_detail {
 
+// How a sweep of the local scheme visits its points: set by the sweep loop
+// (optim/local_newton.cpp) for each sweep and handed to every visit, apart
+// from the run's parameters (Context::params, fixed for the run).
+struct SweepMode {
+  double omega = 1.0;  // the Newton step's over-relaxation in this sweep
+  // Corrected, smoothing and polish: the points of cells above this quality
+  // (at the last record) use the full analytic model.
+  double full_model_above = 0;
+  // Corrected, untangling sweeps (None: a smoothing or polish sweep). The
+  // first uses the plain lagged model (it spares the neighbours of the
+  // tangled cells); the later ones, over the few cells left, the full model
+  // at a point with a cell still invalid at its visit, the lagged one elsewhere.
+  enum class Untangling { None, Lagged, FullWhereInvalid };
+  Untangling untangling = Untangling::None;
+};
+
 struct Context {
   PolyMesh& mesh;
   const OptimParams& params;
@@ -40,19 +56,9 @@ struct Context {
   // corners, per stencil loop the sum of d kappa_mod / d F over the loop's
   // corners (cell_energy_gradient), at the positions of the last refresh.
   std::vector<Vec3> grad_R, grad_F;
-  double omega = 1.0;                        // the local scheme's relaxation in the current sweep
-  // Corrected, smoothing and polish: the points of cells above this quality
-  // (at the last record) use the full analytic model.
-  double full_model_above = 0;
-  // Corrected, untangling sweeps (None: a smoothing or polish sweep). The
-  // first uses the plain lagged model (it spares the neighbours of the
-  // tangled cells); the later ones, over the few cells left, the full model
-  // at a point with a cell still invalid at its visit, the lagged one elsewhere.
-  enum class Untangling { None, Lagged, FullWhereInvalid };
-  Untangling untangling = Untangling::None;
 
   // known: the cells' exact star verdicts (empty, or not one per cell: tested here).
-  Context(PolyMesh& m, const ClassifiedTetMesh* primal, const OptimParams& p, std::span<const CellVerdict> known = {});
+  Context(PolyMesh& m, const ModelFacets* facets, const OptimParams& p, std::span<const CellVerdict> known = {});
   double seconds() const;
   // Adds the seconds since the last lap (or the start) to phase `name` of the
   // report (report->phases, or the setup's until the report is attached).

@@ -40,7 +40,7 @@ class VertexNewton {
 
   // Up to params.newton_steps Newton steps at p; returns the number accepted and
   // the total displacement in *moved.
-  int optimise(PointId p, double* moved) {
+  int optimise(PointId p, const SweepMode& mode, double* moved) {
     const auto& prm = ctx_.params;
     Point3* pts = ctx_.mesh.points.data();
     const LocalObjective obj{ctx_.stencil, pts, ctx_.V0.data(), prm.metric, prm.c, p};
@@ -64,7 +64,7 @@ class VertexNewton {
         for (int i = 0; i < k; ++i) x += t[i] * B[i];
         return x;
       };
-      const OptimParams::Derivatives der = der_ = model_of(cells);
+      const OptimParams::Derivatives der = der_ = model_of(cells, mode);
       const bool corrected = der == OptimParams::Derivatives::Corrected;
       const bool lagged = der == OptimParams::Derivatives::Lagged || corrected;
       if (lagged)
@@ -81,22 +81,9 @@ class VertexNewton {
         return obj(xa) + e;
       };
       auto f = [&](const double* t) { return eval(x_of(t)); };
-      const double zero[3] = {0, 0, 0};
-      double f0;
       Vec g = Vec::Zero();
       Mat H = Mat::Identity();
-      if (der == OptimParams::Derivatives::Analytic || lagged) {
-        f0 = analytic_derivatives(p, B, k, g, H);
-        if (flat) add_planarity(x_of, k, h, prm.planarity, f0, g, H);
-      } else if (der == OptimParams::Derivatives::FiniteDifference) {
-        f0 = f(zero);  // the planarity term is in f already
-        fd_derivatives(f, k, h, f0, g, H);
-      } else {
-        const double xo[3] = {o.x, o.y, o.z};
-        f0 = obj(xo);  // kappa alone: add_planarity adds the term and its derivatives
-        exact_derivatives(obj, o, B, k, h, g, H);
-        if (flat) add_planarity(x_of, k, h, prm.planarity, f0, g, H);
-      }
+      const double f0 = derivatives(p, o, B, k, h, obj, x_of, f, g, H);
       if (!g.allFinite() || !H.allFinite()) break;
       if (g.norm() * ell <= 1e-12 * std::fabs(f0)) break;  // stationary
       Vec d = positive_definite_solve_k(H, g, k);
@@ -107,28 +94,9 @@ class VertexNewton {
       const double slope = g.dot(d);
       if (!(slope < 0)) break;
       if (-slope <= 1e-14 * std::fabs(f0)) break;  // Newton decrement ~ 0: converged
-      // Damping (paper 3.3 / [9]): halve until Armijo holds AND every incident
-      // cell that was valid is still valid (exact star test).
-      // Over-relaxation (ctx_.omega > 1 in smoothing sweeps): omega x the Newton
-      // step is tried first, then the undamped step and its halvings.
-      const bool over = ctx_.omega > 1.0;
-      double alpha = over ? ctx_.omega : 1.0;
-      bool ok = false;
       std::uint32_t prim = BoundaryConstraints::kNone;
       Point3 xt = o;
-      for (int hv = over ? -1 : 0; hv <= prm.max_halvings && !ok; ++hv, alpha = hv <= 0 ? 1.0 : alpha * 0.5) {
-        double t[3] = {0, 0, 0};
-        for (int i = 0; i < k; ++i) t[i] = alpha * d[i];
-        xt = x_of(t);
-        if (k < 3) xt = ctx_.bc->project(p, xt, &prim);
-        const double ft = eval(xt);
-        if (!(ft <= f0 + 1e-4 * alpha * slope)) continue;
-        pts[p.idx] = xt;
-        // Exact: the star test; then the floating-point gates (context.h).
-        ok = keeps_valid(cells) && ctx_.gates_accept(cells, q_);
-        if (!ok) pts[p.idx] = o;
-      }
-      if (!ok) break;
+      if (!damped_step(p, o, k, d, f0, slope, mode.omega, x_of, eval, cells, xt, prim)) break;
       if (k < 3) ctx_.bc->commit(p, prim);  // re-centre the parametric space
       ctx_.gates_commit(cells, q_);
       for (std::uint32_t c : cells)
@@ -142,27 +110,82 @@ class VertexNewton {
     return accepted;
   }
 
+  // f0, g and H at o (t = 0) in the parametric space x_of, by the visit's
+  // model der_ (analytic, lagged or corrected: closed form; finite
+  // differences of f; ceres::Jet of obj), with the planarity term's share.
+  template <class X, class F>
+  double derivatives(PointId p, const Point3& o, const Vec3* B, int k, double h, const LocalObjective& obj,
+                     const X& x_of, const F& f, Vec& g, Mat& H) {
+    const auto& prm = ctx_.params;
+    const bool flat = prm.planarity > 0;
+    const bool lagged =
+        der_ == OptimParams::Derivatives::Lagged || der_ == OptimParams::Derivatives::Corrected;
+    double f0;
+    if (der_ == OptimParams::Derivatives::Analytic || lagged) {
+      f0 = analytic_derivatives(p, B, k, g, H);
+      if (flat) add_planarity(x_of, k, h, prm.planarity, f0, g, H);
+    } else if (der_ == OptimParams::Derivatives::FiniteDifference) {
+      const double zero[3] = {0, 0, 0};
+      f0 = f(zero);  // the planarity term is in f already
+      fd_derivatives(f, k, h, f0, g, H);
+    } else {
+      const double xo[3] = {o.x, o.y, o.z};
+      f0 = obj(xo);  // kappa alone: add_planarity adds the term and its derivatives
+      exact_derivatives(obj, o, B, k, h, g, H);
+      if (flat) add_planarity(x_of, k, h, prm.planarity, f0, g, H);
+    }
+    return f0;
+  }
+
+  // Damping (paper 3.3 / [9]): halve until Armijo holds AND every incident
+  // cell that was valid is still valid (exact star test). Over-relaxation
+  // (omega > 1 in smoothing sweeps): omega x the Newton step is tried
+  // first, then the undamped step and its halvings. On success p is at xt
+  // (prim: its boundary primitive there); otherwise p is back at o.
+  template <class X, class E>
+  bool damped_step(PointId p, const Point3& o, int k, const Vec& d, double f0, double slope, double omega,
+                   const X& x_of, const E& eval, std::span<const std::uint32_t> cells, Point3& xt,
+                   std::uint32_t& prim) {
+    Point3* pts = ctx_.mesh.points.data();
+    const bool over = omega > 1.0;
+    double alpha = over ? omega : 1.0;
+    bool ok = false;
+    for (int hv = over ? -1 : 0; hv <= ctx_.params.max_halvings && !ok; ++hv, alpha = hv <= 0 ? 1.0 : alpha * 0.5) {
+      double t[3] = {0, 0, 0};
+      for (int i = 0; i < k; ++i) t[i] = alpha * d[i];
+      xt = x_of(t);
+      if (k < 3) xt = ctx_.bc->project(p, xt, &prim);
+      const double ft = eval(xt);
+      if (!(ft <= f0 + 1e-4 * alpha * slope)) continue;
+      pts[p.idx] = xt;
+      // Exact: the star test; then the floating-point gates (context.h).
+      ok = keeps_valid(cells) && ctx_.gates_accept(cells, q_);
+      if (!ok) pts[p.idx] = o;
+    }
+    return ok;
+  }
+
   // Whether the last visit used the full analytic model (Corrected runs:
   // model_of), for the sweep's counts.
   bool used_full_model() const { return der_ == OptimParams::Derivatives::Analytic; }
 
  private:
   // The sweep's model, except that a point of a cell whose quality (at the last
-  // record) is above ctx_.full_model_above gets the full analytic model: the
+  // record) is above mode.full_model_above gets the full analytic model: the
   // corrected lagged model is first-order in the centres, which does not
   // recover poorly shaped cells (on a mesh just untangled its max quality
   // oscillates), while the full model does; such points are few.
-  OptimParams::Derivatives model_of(std::span<const std::uint32_t> cells) const {
+  OptimParams::Derivatives model_of(std::span<const std::uint32_t> cells, const SweepMode& mode) const {
     const OptimParams::Derivatives d = ctx_.params.derivatives;
     if (d != OptimParams::Derivatives::Corrected) return d;
-    if (ctx_.untangling == Context::Untangling::Lagged) return OptimParams::Derivatives::Lagged;
-    if (ctx_.untangling == Context::Untangling::FullWhereInvalid) {
+    if (mode.untangling == SweepMode::Untangling::Lagged) return OptimParams::Derivatives::Lagged;
+    if (mode.untangling == SweepMode::Untangling::FullWhereInvalid) {
       for (std::uint32_t c : cells)
         if (!ctx_.cell_valid[c]) return OptimParams::Derivatives::Analytic;
       return OptimParams::Derivatives::Lagged;
     }
     for (std::uint32_t c : cells)
-      if (!(ctx_.cell_quality[c] <= ctx_.full_model_above)) return OptimParams::Derivatives::Analytic;
+      if (!(ctx_.cell_quality[c] <= mode.full_model_above)) return OptimParams::Derivatives::Analytic;
     return d;
   }
 
@@ -409,12 +432,13 @@ Passes colour_passes(Context& ctx, std::vector<std::uint32_t>& block, const std:
 }
 
 // One sweep: the surface pass then the volume pass, each colour in parallel,
-// visiting the points for which active(p) holds. A point whose accepted moves
+// visiting the points for which active(p) holds, each as `mode` says. A point whose accepted moves
 // add up to more than settle_move x its local length stamps its cells with
 // `sweep` in last_change. Visits and accepted moves go to counts.
 template <class Active>
 void sweep_points(Context& ctx, const Passes& passes, tbb::enumerable_thread_specific<VertexNewton>& solvers,
-                  int sweep, std::vector<int>& last_change, const Active& active, IterationRecord& counts) {
+                  const SweepMode& mode, int sweep, std::vector<int>& last_change, const Active& active,
+                  IterationRecord& counts) {
   std::atomic<std::uint64_t> updates{0}, visited{0}, full{0};
   for (const ColourClasses& cc : passes) {
     for (std::size_t col = 0; col + 1 < cc.colour_off.size(); ++col) {
@@ -427,7 +451,7 @@ void sweep_points(Context& ctx, const Passes& passes, tbb::enumerable_thread_spe
           if (!active(p)) continue;
           ++n_vis;
           double moved = 0;
-          const int n = solver.optimise(p, &moved);
+          const int n = solver.optimise(p, mode, &moved);
           n_upd += static_cast<std::uint64_t>(n);
           n_full += solver.used_full_model();
           if (n == 0) continue;
@@ -502,7 +526,7 @@ constexpr double kFullModelRatio = 1.3;
 constexpr double kPolishFullModelShare = 0.8;
 
 void polish_worst(Context& ctx, const Passes& passes, tbb::enumerable_thread_specific<VertexNewton>& solvers,
-                  int sweep, std::vector<int>& last_change) {
+                  SweepMode mode, int sweep, std::vector<int>& last_change) {
   const auto& prm = ctx.params;
   const double mean = ctx.last_stats.mean;
   std::vector<char> bad(ctx.mesh.num_cells(), 0);
@@ -534,9 +558,9 @@ void polish_worst(Context& ctx, const Passes& passes, tbb::enumerable_thread_spe
       return false;
     };
     IterationRecord one;
-    ctx.untangling = Context::Untangling::None;
-    ctx.full_model_above = mean + kPolishFullModelShare * (worst - mean);
-    sweep_points(ctx, passes, solvers, sweep + ++k, last_change, active, one);
+    mode.untangling = SweepMode::Untangling::None;
+    mode.full_model_above = mean + kPolishFullModelShare * (worst - mean);
+    sweep_points(ctx, passes, solvers, mode, sweep + ++k, last_change, active, one);
     counts.visited += one.visited;
     counts.updates += one.updates;
     counts.full_model += one.full_model;
@@ -632,145 +656,209 @@ std::vector<char> untangling_candidates(const Context& ctx, bool first, const st
 // mesh with 4 vertices cut whole: 191,571 of ~200k points visited).
 constexpr int kSeedReach = 3;
 
-}  // namespace
+// The local scheme's sweeps (run_local), step by step: the untangling phase,
+// the smoothing sweeps, then the polish and the OpenFOAM repair.
+//
+// Active set. A point is visited while a cell around it is invalid, or a point
+// of one of its cells moved by more than settle_move x its local length in
+// this or the previous sweep (last_change[c] >= sweep - 1); points in settled
+// regions are skipped. Untangling phase (up to untangle_sweeps sweeps, while
+// invalid cells remain): nothing counts as changed at the start, so only the
+// points of the invalid cells' bad tets (first sweep), then the points of
+// invalid cells and the growing rings around the points that moved are
+// visited. Then one sweep visits every point (the smoothing starts
+// everywhere) and later sweeps follow the settling rule.
+class LocalRun {
+ public:
+  explicit LocalRun(Context& ctx);
+  void run();
 
-void run_local(Context& ctx) {
-  const auto& prm = ctx.params;
-  const std::size_t nc = ctx.mesh.num_cells();
-  tbb::enumerable_thread_specific<VertexNewton> solvers([&] { return VertexNewton(ctx); });
+ private:
+  const Passes& whole_passes();
+  void bound_seeded_run();
+  void set_sweep_mode(bool untangling, int sweep);
+  const IterationRecord& run_sweep(int sweep, bool untangling);
+  bool untangling_ends_run(const IterationRecord& rec);
+  void finish(int sweep);
+
+  static constexpr int kNever = -2;
+  Context& ctx_;
+  const OptimParams& prm_;
+  tbb::enumerable_thread_specific<VertexNewton> solvers_;
   // The colouring of every point, made when the first sweep that may visit
   // any point needs it (never while only untangling); an untangling sweep
   // colours its candidates only (untangling_candidates).
-  std::optional<Passes> whole;
-  std::vector<std::uint32_t> block(ctx.mesh.num_points(), kNoBlock);  // colour_points' scratch
-  auto whole_passes = [&]() -> const Passes& {
-    if (!whole) {
-      whole = colour_passes(ctx, block);
-      ctx.lap("colouring");
-    }
-    return *whole;
-  };
-  // Active set. A point is visited while a cell around it is invalid, or a point
-  // of one of its cells moved by more than settle_move x its local length in
-  // this or the previous sweep (last_change[c] >= sweep - 1); points in settled
-  // regions are skipped. Untangling phase (up to untangle_sweeps sweeps, while
-  // invalid cells remain): nothing counts as changed at the start, so only the
-  // points of the invalid cells' bad tets (first sweep), then the points of
-  // invalid cells and the growing rings around the points that moved are
-  // visited. Then one sweep visits every point (the smoothing starts
-  // everywhere) and later sweeps follow the settling rule.
-  constexpr int kNever = -2;
-  std::vector<int> last_change(nc, kNever);
+  std::optional<Passes> whole_;
+  std::vector<std::uint32_t> block_;  // colour_points' scratch
+  std::vector<int> last_change_;      // per cell, the last sweep that moved one of its points
+  SweepMode mode_;                    // of the current sweep (the polish starts from the last one's)
   // Method::Untangle: only untangling sweeps, as many as max_iter allows.
-  const bool untangle_only = prm.method == OptimParams::Method::Untangle;
-  int untangle_left = ctx.report->iterations.back().invalid > 0 ? (untangle_only ? prm.max_iter : prm.untangle_sweeps) : 0;
-  if (untangle_only && untangle_left == 0) return;
+  const bool untangle_only_;
+  int untangle_left_;
   // Seeded (optimize()'s seed_cells): no full sweep; the seed cells count as
   // changed in the sweep before the first, and the rule spreads from there.
-  const bool seeded = !ctx.seed_cells.empty();
-  std::vector<char> reach;  // seeded: the cells whose points may move
-  if (seeded) {
-    reach.assign(nc, 0);
-    for (std::size_t c = 0; c < nc; ++c) reach[c] = ctx.seed_cells[c] || !ctx.cell_valid[c];
-    grow_layers(ctx, reach, kSeedReach);
-    for (std::size_t c = 0; c < nc; ++c)
-      if (ctx.seed_cells[c]) last_change[c] = 0;
-  }
-  bool full_sweep = untangle_left == 0 && !seeded;
-  double f_prev = ctx.report->iterations.back().objective;
-  std::vector<char> near_invalid, focus;
-  std::size_t fewest_invalid = ctx.report->iterations.back().invalid;
-  int stalled = 0;  // untangling sweeps since the invalid count last dropped
+  const bool seeded_;
+  std::vector<char> reach_;  // seeded: the cells whose points may move
+  bool full_sweep_ = false;
+  double f_prev_;
+  std::vector<char> near_invalid_, focus_;
+  std::size_t fewest_invalid_;
+  int stalled_ = 0;  // untangling sweeps since the invalid count last dropped
   // No smoothing sweep has run yet (a seeded run's cells around the cuts are
   // badly shaped from the start: the full model from its first sweep).
-  bool first_smoothing = !seeded;
-  int sweep = 1;
-  for (; sweep <= prm.max_iter; ++sweep) {
-    const bool untangling = untangle_left > 0;
-    // Untangling sweeps: no over-relaxation, and the full model instead of the
-    // corrected lagged one (around a tangled cell the centres' motion is what
-    // decides the regularised volumes; the sweeps visit few points).
-    ctx.omega = untangling ? 1.0 : prm.relaxation;
-    // The first untangling sweep (the points of every invalid cell) on the
-    // plain lagged model: with the centres held, a point of a tangled cell is
-    // not dragged to where the regularised volumes of the tangled cell drop
-    // fastest at any cost to its valid neighbours, as the full model does
-    // (proofs/quality.md §7). The later untangling sweeps, over the few cells
-    // it left, use the full model at a point that still has an invalid cell
-    // when it is visited (it untangles what the lagged one cannot) and the
-    // plain lagged model at the others, whose cells an earlier visit of the
-    // sweep made valid (a full-model visit costs ~5x a lagged one; measured
-    // at 100k: the same invalid counts per sweep, 40-60% of the visits on the
-    // full model, the later sweeps ~25% faster).
-    // The first smoothing sweep then uses no full model (kFullModelRatio).
-    ctx.untangling = !untangling ? Context::Untangling::None
-                     : sweep == 1 ? Context::Untangling::Lagged
-                                  : Context::Untangling::FullWhereInvalid;
-    ctx.full_model_above =
-        first_smoothing ? std::numeric_limits<double>::infinity() : kFullModelRatio * ctx.last_stats.mean;
-    first_smoothing = first_smoothing && untangling;
-    // Untangling: rings grow by one cell layer per sweep (changes of the
-    // previous sweep only); smoothing: changes of this or the previous sweep.
-    const int since = sweep - 1;
-    // The first untangling sweep visits the points of the invalid cells' bad
-    // tets only (mark_bad_tet_points); the later ones every point of an invalid cell.
-    const bool first_untangling = untangling && sweep == 1;
-    // Nothing has changed before the first sweep of a run that is not seeded:
-    // no ring to bound.
-    if (untangling && (!first_untangling || seeded)) mark_near_invalid(ctx, near_invalid);
-    if (first_untangling) mark_bad_tet_points(ctx, focus);
-    auto active = [&](PointId p) {
-      bool a = full_sweep || (first_untangling && focus[p.idx]), in_reach = !seeded;
-      for (std::uint32_t c : ctx.stencil.cells_of(p)) {
-        a = a || (!first_untangling && !ctx.cell_valid[c]) ||
-            (last_change[c] >= since && (!untangling || (last_change[c] < sweep && !near_invalid.empty() && near_invalid[c])));
-        in_reach = in_reach || reach[c];
-      }
-      return a && in_reach;
-    };
-    IterationRecord counts;
-    if (untangling) {
-      const std::vector<char> cand = untangling_candidates(ctx, first_untangling, focus, last_change, sweep, near_invalid);
-      const Passes sub = colour_passes(ctx, block, &cand);
-      ctx.lap("colouring");
-      sweep_points(ctx, sub, solvers, sweep, last_change, active, counts);
-    } else {
-      sweep_points(ctx, whole_passes(), solvers, sweep, last_change, active, counts);
-    }
-    const IterationRecord& rec = record_sweep(ctx, sweep, counts);
-    if (untangling) {
-      // The objective test is meaningless while only a few points move.
-      --untangle_left;
-      if (rec.invalid < fewest_invalid) {
-        fewest_invalid = rec.invalid;
-        stalled = 0;
-      } else {
-        ++stalled;
-      }
-      if (rec.invalid == 0 || rec.updates == 0 || stalled >= kUntangleStall) untangle_left = 0;
-      if (untangle_only && untangle_left == 0) return;
-      full_sweep = untangle_left == 0 && !seeded;
-      f_prev = rec.objective;
-      continue;
-    }
-    full_sweep = false;
-    const double f = rec.objective;
-    if (std::fabs(f_prev - f) < prm.effective_tol() * std::fabs(f_prev)) break;
-    f_prev = f;
+  bool first_smoothing_;
+};
+
+LocalRun::LocalRun(Context& ctx)
+    : ctx_(ctx), prm_(ctx.params), solvers_([&ctx] { return VertexNewton(ctx); }),
+      block_(ctx.mesh.num_points(), kNoBlock), last_change_(ctx.mesh.num_cells(), kNever),
+      untangle_only_(ctx.params.method == OptimParams::Method::Untangle),
+      untangle_left_(ctx.report->iterations.back().invalid > 0
+                         ? (untangle_only_ ? ctx.params.max_iter : ctx.params.untangle_sweeps)
+                         : 0),
+      seeded_(!ctx.seed_cells.empty()), f_prev_(ctx.report->iterations.back().objective),
+      fewest_invalid_(ctx.report->iterations.back().invalid), first_smoothing_(!seeded_) {}
+
+const Passes& LocalRun::whole_passes() {
+  if (!whole_) {
+    whole_ = colour_passes(ctx_, block_);
+    ctx_.lap("colouring");
   }
-  if (!untangle_only && prm.polish_sweeps > 0 && prm.max_iter > 0 && ctx.report->iterations.back().invalid == 0) {
-    polish_worst(ctx, whole_passes(), solvers, sweep, last_change);
+  return *whole_;
+}
+
+// A seeded run moves the points of the cells within kSeedReach layers of the
+// seed and invalid cells only; the seed cells count as changed before sweep 1.
+void LocalRun::bound_seeded_run() {
+  const std::size_t nc = ctx_.mesh.num_cells();
+  reach_.assign(nc, 0);
+  for (std::size_t c = 0; c < nc; ++c) reach_[c] = ctx_.seed_cells[c] || !ctx_.cell_valid[c];
+  grow_layers(ctx_, reach_, kSeedReach);
+  for (std::size_t c = 0; c < nc; ++c)
+    if (ctx_.seed_cells[c]) last_change_[c] = 0;
+}
+
+// The sweep's relaxation and derivative model (mode_, handed to every visit).
+void LocalRun::set_sweep_mode(bool untangling, int sweep) {
+  // Untangling sweeps: no over-relaxation, and the full model instead of the
+  // corrected lagged one (around a tangled cell the centres' motion is what
+  // decides the regularised volumes; the sweeps visit few points).
+  mode_.omega = untangling ? 1.0 : prm_.relaxation;
+  // The first untangling sweep (the points of every invalid cell) on the
+  // plain lagged model: with the centres held, a point of a tangled cell is
+  // not dragged to where the regularised volumes of the tangled cell drop
+  // fastest at any cost to its valid neighbours, as the full model does
+  // (proofs/quality.md §7). The later untangling sweeps, over the few cells
+  // it left, use the full model at a point that still has an invalid cell
+  // when it is visited (it untangles what the lagged one cannot) and the
+  // plain lagged model at the others, whose cells an earlier visit of the
+  // sweep made valid (a full-model visit costs ~5x a lagged one; measured
+  // at 100k: the same invalid counts per sweep, 40-60% of the visits on the
+  // full model, the later sweeps ~25% faster).
+  // The first smoothing sweep then uses no full model (kFullModelRatio).
+  mode_.untangling = !untangling ? SweepMode::Untangling::None
+                     : sweep == 1 ? SweepMode::Untangling::Lagged
+                                  : SweepMode::Untangling::FullWhereInvalid;
+  mode_.full_model_above =
+      first_smoothing_ ? std::numeric_limits<double>::infinity() : kFullModelRatio * ctx_.last_stats.mean;
+  first_smoothing_ = first_smoothing_ && untangling;
+}
+
+// One sweep over the active points and its record.
+const IterationRecord& LocalRun::run_sweep(int sweep, bool untangling) {
+  // Untangling: rings grow by one cell layer per sweep (changes of the
+  // previous sweep only); smoothing: changes of this or the previous sweep.
+  const int since = sweep - 1;
+  // The first untangling sweep visits the points of the invalid cells' bad
+  // tets only (mark_bad_tet_points); the later ones every point of an invalid cell.
+  const bool first_untangling = untangling && sweep == 1;
+  // Nothing has changed before the first sweep of a run that is not seeded:
+  // no ring to bound.
+  if (untangling && (!first_untangling || seeded_)) mark_near_invalid(ctx_, near_invalid_);
+  if (first_untangling) mark_bad_tet_points(ctx_, focus_);
+  auto active = [&](PointId p) {
+    bool a = full_sweep_ || (first_untangling && focus_[p.idx]), in_reach = !seeded_;
+    for (std::uint32_t c : ctx_.stencil.cells_of(p)) {
+      a = a || (!first_untangling && !ctx_.cell_valid[c]) ||
+          (last_change_[c] >= since &&
+           (!untangling || (last_change_[c] < sweep && !near_invalid_.empty() && near_invalid_[c])));
+      in_reach = in_reach || reach_[c];
+    }
+    return a && in_reach;
+  };
+  IterationRecord counts;
+  if (untangling) {
+    const std::vector<char> cand =
+        untangling_candidates(ctx_, first_untangling, focus_, last_change_, sweep, near_invalid_);
+    const Passes sub = colour_passes(ctx_, block_, &cand);
+    ctx_.lap("colouring");
+    sweep_points(ctx_, sub, solvers_, mode_, sweep, last_change_, active, counts);
+  } else {
+    sweep_points(ctx_, whole_passes(), solvers_, mode_, sweep, last_change_, active, counts);
   }
-  // The cells failing OpenFOAM's checks (optim/foam_gate.h) get a repair
-  // descent, in one more record; not while cells are invalid (the split cuts
-  // and re-optimises them: on a sliver mesh's tangled dual the repair cost
-  // 4x the sweeps).
-  if (!untangle_only && prm.foam_gate && prm.max_iter > 0 && ctx.report->iterations.back().invalid == 0) {
-    ctx.lap("iterations");
-    const IterationRecord r = repair_foam(ctx);
-    ctx.lap("foam_repair");
-    if (r.updates > 0) record_sweep(ctx, ctx.report->iterations.back().iteration + 1, r);
+  return record_sweep(ctx_, sweep, counts);
+}
+
+// After an untangling sweep: the phase ends when no cell is invalid, nothing
+// moved or kUntangleStall sweeps left as many invalid cells; returns whether
+// the run ends with it (Method::Untangle). The objective test is meaningless
+// while only a few points move.
+bool LocalRun::untangling_ends_run(const IterationRecord& rec) {
+  --untangle_left_;
+  if (rec.invalid < fewest_invalid_) {
+    fewest_invalid_ = rec.invalid;
+    stalled_ = 0;
+  } else {
+    ++stalled_;
+  }
+  if (rec.invalid == 0 || rec.updates == 0 || stalled_ >= kUntangleStall) untangle_left_ = 0;
+  if (untangle_only_ && untangle_left_ == 0) return true;
+  full_sweep_ = untangle_left_ == 0 && !seeded_;
+  f_prev_ = rec.objective;
+  return false;
+}
+
+// The polish and, the cells failing OpenFOAM's checks (optim/foam_gate.h),
+// a repair descent in one more record; neither while cells are invalid (the
+// split cuts and re-optimises them: on a sliver mesh's tangled dual the
+// repair cost 4x the sweeps). sweep: the first sweep not run.
+void LocalRun::finish(int sweep) {
+  if (untangle_only_) return;
+  if (prm_.polish_sweeps > 0 && prm_.max_iter > 0 && ctx_.report->iterations.back().invalid == 0)
+    polish_worst(ctx_, whole_passes(), solvers_, mode_, sweep, last_change_);
+  if (prm_.foam_gate && prm_.max_iter > 0 && ctx_.report->iterations.back().invalid == 0) {
+    ctx_.lap("iterations");
+    const IterationRecord r = repair_foam(ctx_);
+    ctx_.lap("foam_repair");
+    if (r.updates > 0) record_sweep(ctx_, ctx_.report->iterations.back().iteration + 1, r);
   }
 }
+
+// Untangling sweeps while cells are invalid, then smoothing sweeps until the
+// objective drops by less than the tolerance (relative) or max_iter.
+void LocalRun::run() {
+  if (untangle_only_ && untangle_left_ == 0) return;
+  if (seeded_) bound_seeded_run();
+  full_sweep_ = untangle_left_ == 0 && !seeded_;
+  int s = 1;
+  for (; s <= prm_.max_iter; ++s) {
+    const bool untangling = untangle_left_ > 0;
+    set_sweep_mode(untangling, s);
+    const IterationRecord& rec = run_sweep(s, untangling);
+    if (untangling) {
+      if (untangling_ends_run(rec)) return;
+      continue;
+    }
+    full_sweep_ = false;
+    const double f = rec.objective;
+    if (std::fabs(f_prev_ - f) < prm_.effective_tol() * std::fabs(f_prev_)) break;
+    f_prev_ = f;
+  }
+  finish(s);
+}
+
+}  // namespace
+
+void run_local(Context& ctx) { LocalRun(ctx).run(); }
 
 }  // namespace polydual::optim_detail

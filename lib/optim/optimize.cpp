@@ -20,15 +20,15 @@
 namespace polydual {
 namespace optim_detail {
 
-Context::Context(PolyMesh& m, const ClassifiedTetMesh* primal, const OptimParams& p,
+Context::Context(PolyMesh& m, const ModelFacets* facets, const OptimParams& p,
                  std::span<const CellVerdict> known)
     : mesh(m), params(p), start(std::chrono::steady_clock::now()), lap_start(start) {
   stencil = build_stencil(m, p.method == OptimParams::Method::Global);  // its gradients need loop_local
   lap("stencil");
   // The local schemes move only the points they visit and ensure() each
   // first (VertexNewton::optimise): their initial primitives are found then.
-  if (primal)
-    bc = std::make_unique<BoundaryConstraints>(*primal, m, p.method != OptimParams::Method::Global, p.keep_boundary);
+  if (facets)
+    bc = std::make_unique<BoundaryConstraints>(*facets, m, p.method != OptimParams::Method::Global, p.keep_boundary);
   lap("constraints");
   dof.assign(m.num_points(), 0);
   for (std::size_t i = 0; i < m.num_points(); ++i) {
@@ -187,14 +187,14 @@ void Context::basis(PointId p, Vec3 B[3]) const {
 
 }  // namespace optim_detail
 
-OptimReport optimize(PolyMesh& mesh, const ClassifiedTetMesh* primal, const OptimParams& params,
+OptimReport optimize(PolyMesh& mesh, const ModelFacets* facets, const OptimParams& params,
                      const ProgressFn& progress, std::span<const char> seed_cells,
                      std::span<const CellVerdict> known) {
   if (!seed_cells.empty() && seed_cells.size() != mesh.num_cells())
     throw UsageError("optimize: " + std::to_string(seed_cells.size()) + " seed flags for " +
                      std::to_string(mesh.num_cells()) + " cells");
   OptimReport rep;
-  optim_detail::Context ctx(mesh, primal, params, known);
+  optim_detail::Context ctx(mesh, facets, params, known);
   ctx.report = &rep;
   rep.phases = std::move(ctx.setup_phases);
   ctx.progress = &progress;

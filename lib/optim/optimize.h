@@ -12,7 +12,7 @@
 
 #include "core/json.h"
 #include "core/progress.h"
-#include "mesh/classified_tet_mesh.h"
+#include "mesh/model_facets.h"
 #include "mesh/poly_mesh.h"
 #include "quality/corner.h"
 #include "quality/metrics.h"
@@ -192,8 +192,9 @@ struct OptimReport {
   Json to_json() const;
 };
 
-// Optimises `mesh` in place. With primal == nullptr boundary points (dim 0..2) are
-// fixed; otherwise dim-1/2 points slide on the primal's model edges/faces.
+// Optimises `mesh` in place. With facets == nullptr boundary points (dim 0..2)
+// are fixed; otherwise dim-1/2 points slide on the model edges' segments and
+// the model faces' triangles of `facets` (model_facets() of the primal).
 // `progress` (may be empty) is called after every iteration with its record.
 // seed_cells (Local and Untangle; empty: every point, the default): the
 // smoothing starts from the points of these cells only and spreads by the
@@ -201,9 +202,9 @@ struct OptimReport {
 // from a seed or invalid cell (a re-optimisation after a local change, e.g.
 // the split: the rest of the mesh stays as it was).
 // known (empty: computed here): the exact star verdicts of mesh as it is, one
-// per cell (check_mesh's, pipeline/check.h), so that the optimiser does not
+// per cell (check_mesh's, quality/check_result.h), so that the optimiser does not
 // test every cell again before it starts.
-OptimReport optimize(PolyMesh& mesh, const ClassifiedTetMesh* primal, const OptimParams& params,
+OptimReport optimize(PolyMesh& mesh, const ModelFacets* facets, const OptimParams& params,
                      const ProgressFn& progress = {}, std::span<const char> seed_cells = {},
                      std::span<const CellVerdict> known = {});
 

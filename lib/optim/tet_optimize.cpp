@@ -423,39 +423,13 @@ ClassifiedTetMesh with_points(const ClassifiedTetMesh& mesh, std::vector<Point3>
   if (points.size() != mesh.num_vertices())
     throw UsageError("with_points: " + std::to_string(points.size()) + " points for a mesh of " +
                      std::to_string(mesh.num_vertices()) + " vertices");
-  std::vector<std::array<VertexId, 4>> tets(mesh.num_tets());
-  std::vector<std::int32_t> regions(mesh.num_tets());
-  for (std::size_t t = 0; t < tets.size(); ++t) {
-    tets[t] = mesh.tet(TetId(t));
-    regions[t] = mesh.region(TetId(t));
-    const auto& v = tets[t];
+  for (std::size_t t = 0; t < mesh.num_tets(); ++t) {
+    const auto& v = mesh.tet(TetId(t));
     if (orient3d(points[v[0].idx], points[v[1].idx], points[v[2].idx], points[v[3].idx]) != Sign::Positive)
       throw InputError(mesh.source(), "tet " + std::to_string(mesh.input_tet(TetId(t))),
                        "not positively oriented after moving its vertices");
   }
-  ClassifiedTetMesh out = TetMeshBuilder::build_topology(mesh.source(), std::move(points), std::move(tets),
-                                                         std::move(regions), mesh.input_vertices(), [&] {
-                                                           std::vector<std::uint32_t> it(mesh.num_tets());
-                                                           for (std::size_t t = 0; t < it.size(); ++t)
-                                                             it[t] = mesh.input_tet(TetId(t));
-                                                           return it;
-                                                         }());
-  // Same tets in the same order: the triangle and edge numbering is the same.
-  auto& vc = TetMeshBuilder::vertex_class(out);
-  vc.resize(out.num_vertices());
-  for (std::size_t v = 0; v < vc.size(); ++v) vc[v] = mesh.vertex_class(VertexId(v));
-  auto& ec = TetMeshBuilder::edge_class(out);
-  ec.resize(out.num_edges());
-  for (std::size_t e = 0; e < ec.size(); ++e) ec[e] = mesh.edge_class(EdgeId(e));
-  auto& tf = TetMeshBuilder::triangle_face(out);
-  tf.resize(out.num_triangles());
-  for (std::size_t f = 0; f < tf.size(); ++f) {
-    const ModelRef r = mesh.triangle_class(TriId(f));
-    tf[f] = r.dim == 2 ? r.tag : TetMeshBuilder::kNoFace;
-  }
-  TetMeshBuilder::model(out) = mesh.model();
-  TetMeshBuilder::classification_warnings(out) = mesh.classification_warnings();
-  return out;
+  return mesh.with_points(std::move(points));
 }
 
 namespace {
@@ -473,11 +447,12 @@ void add_round(TetOptReport& rep, const TetOptReport& r) {
 
 }  // namespace
 
-TetOptReport optimize_tets(ClassifiedTetMesh& mesh, const TetOptParams& params) {
+ClassifiedTetMesh optimize_tets(const ClassifiedTetMesh& input, const TetOptParams& params, TetOptReport* report) {
   params.validate();
   const Stopwatch clock;
   TetOptReport rep;
-  rep.before = tet_quality_stats(mesh, mesh.points());
+  rep.before = tet_quality_stats(input, input.points());
+  ClassifiedTetMesh mesh = input;
   const int rounds = params.flips.enabled ? params.flips.rounds : 1;
   for (int round = 0; round < rounds; ++round) {
     TetOptReport r;
@@ -493,7 +468,8 @@ TetOptReport optimize_tets(ClassifiedTetMesh& mesh, const TetOptParams& params) 
   }
   rep.after = tet_quality_stats(mesh, mesh.points());
   rep.seconds = clock.seconds();
-  return rep;
+  if (report) *report = std::move(rep);
+  return mesh;
 }
 
 }  // namespace polydual

@@ -88,12 +88,15 @@ std::vector<Point3> optimized_tet_points(const ClassifiedTetMesh& mesh, const Te
                                          TetOptReport* report = nullptr);
 
 // `mesh` with its coordinates replaced by `points` (same tets, ids and
-// classification). Throws InputError naming the source and the tet if a tet of
-// the result is not positive by the exact orient3d.
+// classification: ClassifiedTetMesh::with_points). Throws InputError naming
+// the source and the tet if a tet of the result is not positive by the exact
+// orient3d.
 ClassifiedTetMesh with_points(const ClassifiedTetMesh& mesh, std::vector<Point3> points);
 
-// Moves, then (params.flips.enabled) the flip pass: replaces `mesh` by the
-// result and reports. With flips the tets are renumbered (tet_flip.h).
-TetOptReport optimize_tets(ClassifiedTetMesh& mesh, const TetOptParams& params);
+// Moves, then (params.flips.enabled) the flip pass: returns the mesh that
+// results (`mesh` unchanged) and reports into `report` (may be null). With
+// flips the tets are renumbered (tet_flip.h).
+ClassifiedTetMesh optimize_tets(const ClassifiedTetMesh& mesh, const TetOptParams& params,
+                                TetOptReport* report = nullptr);
 
 }  // namespace polydual

@@ -1,41 +1,16 @@
-// The validity stage: topological and model checks (mesh/validate.h) joined
-// with the exact star-shaped verdict of every cell (quality/star_verdict.h).
-// `check`, `optimize`, `convert` and the demo all report through it.
+// What the command and the pipeline add to a check result
+// (quality/check_result.h): the refusals of --require-valid and --primal, and
+// the verdicts as the writers' cell arrays.
 #pragma once
-#include <cstdint>
 #include <string>
 #include <vector>
 
-#include "core/json.h"
 #include "io/vtu_poly_writer.h"
 #include "mesh/classified_tet_mesh.h"
 #include "mesh/poly_mesh.h"
-#include "mesh/validate.h"
-#include "quality/star_verdict.h"
+#include "quality/check_result.h"
 
 namespace polydual {
-
-struct CheckResult {
-  ValidationReport validation;
-  std::vector<CellVerdict> verdicts;  // one per cell, exact
-  std::size_t invalid_cells = 0;      // cells whose verdict is not valid
-  std::uint64_t decomposition_tets = 0;  // star-test tets evaluated
-  std::uint64_t exact_fallbacks = 0;     // of which reached the exact path
-  std::vector<std::uint32_t> cell_exact;  // per cell, its exact fallbacks (empty: not known)
-  double seconds = 0;
-  Json to_json() const;  // counts only (the verdicts go into the cell data)
-};
-
-// primal may be null (a mesh read back from a file): model entities and the
-// primal volumes are then not checked. Without `with_validation` only the
-// verdicts are computed (validation stays default).
-CheckResult check_mesh(const PolyMesh& mesh, const ClassifiedTetMesh* primal, bool with_validation = true);
-
-// The same result as check_mesh(mesh, primal, true) when `known` holds the
-// verdicts and per-cell exact fallbacks of this very mesh (a check_mesh of
-// it, or split/recheck.h): the validation runs, the star test is not redone.
-// exact_fallbacks is the sum of known.cell_exact.
-CheckResult check_with_known_verdicts(const PolyMesh& mesh, const ClassifiedTetMesh* primal, CheckResult known);
 
 // --require-valid for a mesh checked on its own (`optimize`): an InputError
 // naming `source`, the validation's failed checks and the cells still

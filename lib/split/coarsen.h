@@ -30,6 +30,8 @@
 #include "dual/vertex_cuts.h"
 #include "mesh/classified_tet_mesh.h"
 #include "mesh/poly_mesh.h"
+#include "quality/metrics.h"
+#include "split/split.h"
 
 namespace polydual {
 
@@ -83,5 +85,15 @@ void label_cuts(const ClassifiedTetMesh& m, VertexId v, std::span<const std::uin
 // partner), one-to-one, for split/recheck.h. A wrong pairing can only cost
 // a merge: every trial is star-tested exactly.
 std::vector<PointId> warm_start_by_rank(PolyMesh& fresh, const PolyMesh& old);
+
+// The coarsening as a step of the split (split/split.h), on `mesh`, built
+// with st.cuts and valid (check_base: its exact verdicts, every cell valid):
+// trials rebuilt with build_dual(m, dual, .., trial cuts), every point where
+// `mesh` has it, star-tested exactly; a merged cell above kMergeQualityBound
+// and above its vertex's worst corner (cell_quality with `metric`) fails like
+// an invalid one. Leaves the last valid trial in mesh, check_base (verdicts)
+// and st.cuts; returns the step's record.
+Json coarsen_split(const ClassifiedTetMesh& m, const DualParams& dual, Metric metric, SplitState& st, PolyMesh& mesh,
+                   CheckResult& check_base);
 
 }  // namespace polydual

@@ -7,7 +7,7 @@
 #include <span>
 
 #include "mesh/poly_mesh.h"
-#include "pipeline/check.h"
+#include "quality/check_result.h"
 
 namespace polydual {
 

@@ -231,7 +231,8 @@ TEST(BoundaryKeep, ConstraintsHoldEachPointOnItsOwnSimplex) {
   rp.lattice_points = true;  // vertices on the box's faces and edges too
   const ClassifiedTetMesh m = classify(random_classified_mesh(rp));
   const PolyMesh pm = build_dual(m, keep_dual());
-  const BoundaryConstraints own(m, pm, false, true), walk(m, pm, false, false);
+  const ModelFacets facets = model_facets(m);
+  const BoundaryConstraints own(facets, pm, false, true), walk(facets, pm, false, false);
   EXPECT_TRUE(own.own_primitives());
   std::size_t vertices = 0, midpoints = 0, centres = 0, walked_off = 0;
   for (std::size_t i = 0; i < pm.num_points(); ++i) {

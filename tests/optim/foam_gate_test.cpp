@@ -139,6 +139,7 @@ TEST(OptimGates, NoSweepRaisesTheWorstValidCell) {
   for (std::uint64_t seed : {1u, 2u}) {
     ConvertResult r = raw_random_conversion(seed, 150);
     PolyMesh& m = r.mesh;
+    const ModelFacets facets = model_facets(r.primal);
     const MeshStencil s = build_stencil(m);
     for (int sweep = 0; sweep < 6; ++sweep) {
       const auto v = star_shaped_verdicts(m);
@@ -148,7 +149,7 @@ TEST(OptimGates, NoSweepRaisesTheWorstValidCell) {
       OptimParams p;
       p.max_iter = 1;
       p.foam_gate = false;  // one sweep and nothing after it (the repair is a stage of its own)
-      optimize(m, &r.primal, p);
+      optimize(m, &facets, p);
       EXPECT_LE(max_quality(s, m, valid), before * (1 + 1e-12)) << "seed " << seed << " sweep " << sweep;
     }
   }
@@ -164,7 +165,8 @@ TEST(OptimGates, TheOptimiserKeepsOpenFoamsChecksPassing) {
     const FoamCheck before = foam_check(r.mesh);
     OptimParams p;
     p.foam_gate_sweeps = true;  // the gate on every move: the guarantee below
-    const OptimReport rep = optimize(r.mesh, &r.primal, p);
+    const ModelFacets facets = model_facets(r.primal);
+    const OptimReport rep = optimize(r.mesh, &facets, p);
     const FoamCheck after = foam_check(r.mesh);
     EXPECT_LE(after.face_tet_faces, before.face_tet_faces) << "seed " << seed;
     EXPECT_LE(after.pyramid_faces, before.pyramid_faces) << "seed " << seed;

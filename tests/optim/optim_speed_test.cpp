@@ -285,7 +285,8 @@ TEST(OptimSpeed, WorstDescentWorkIsBoundedByTheMesh) {
   ConvertResult r = convert(soup, raw);
   OptimParams p;
   p.worst_rounds = 100000;
-  const OptimReport rep = optimize(r.mesh, &r.primal, p);
+  const ModelFacets facets = model_facets(r.primal);
+  const OptimReport rep = optimize(r.mesh, &facets, p);
   const std::uint64_t moves = rep.iterations.back().updates;  // the polish's record holds the descent's moves
   EXPECT_GT(moves, r.mesh.num_points()) << "the descent ran";
   EXPECT_LE(moves, 8 * r.mesh.num_points());

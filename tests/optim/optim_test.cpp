@@ -281,8 +281,9 @@ TEST(Optim, LazyConstraintsFindTheEagerPrimitives) {
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> u(-0.05, 0.05);
   for (Point3& x : m.points) x += Vec3{u(rng), u(rng), u(rng)};  // off the facets: a real search
-  const BoundaryConstraints eager(primal, m);
-  BoundaryConstraints lazy(primal, m, true);
+  const ModelFacets facets = model_facets(primal);
+  const BoundaryConstraints eager(facets, m);
+  BoundaryConstraints lazy(facets, m, true);
   std::size_t searched = 0;
   for (std::size_t i = 0; i < m.num_points(); ++i) {
     const PointId p(i);
@@ -313,10 +314,11 @@ TEST(Optim, BoundaryPointsStayOnTheOriginalFacetisation) {
     const PolyMesh start = m;
     OptimParams p;
     p.method = method;
-    const OptimReport r = optimize(m, &primal, p);
+    const ModelFacets facets = model_facets(primal);
+    const OptimReport r = optimize(m, &facets, p);
     EXPECT_EQ(r.invalid_after, 0);
     EXPECT_LT(r.after.mean, r.before.mean);
-    const BoundaryConstraints bc(primal, start);
+    const BoundaryConstraints bc(facets, start);
     int moved_surface = 0;
     for (std::size_t i = 0; i < m.num_points(); ++i) {
       const int dim = m.point_class[i].dim;

@@ -43,8 +43,7 @@ ClassifiedTetMesh moved(ClassifiedTetMesh m) {
   TetOptParams p;
   p.enabled = true;
   p.flips.enabled = false;
-  optimize_tets(m, p);
-  return m;
+  return optimize_tets(m, p);
 }
 
 std::size_t non_positive_tets(const ClassifiedTetMesh& m) {
@@ -254,7 +253,8 @@ TEST(TetFlip, OptimizeTetsRunsTheFlipsAndReportsThem) {
   const ClassifiedTetMesh input = m;
   TetOptParams p;
   p.enabled = true;
-  const TetOptReport rep = optimize_tets(m, p);
+  TetOptReport rep;
+  m = optimize_tets(m, p, &rep);
   ASSERT_TRUE(rep.flipped);
   EXPECT_GT(rep.flips.flips23, 0u);
   EXPECT_EQ(rep.flips.after.free, count_non_delaunay(m).free);
@@ -278,9 +278,10 @@ TEST(TetFlip, RoundsAlternateMovesAndFlips) {
   const ClassifiedTetMesh input = one;
   TetOptParams p;
   p.enabled = true;
-  const TetOptReport r1 = optimize_tets(one, p);
+  TetOptReport r1, r3;
+  one = optimize_tets(one, p, &r1);
   p.flips.rounds = 3;
-  const TetOptReport r3 = optimize_tets(three, p);
+  three = optimize_tets(three, p, &r3);
   EXPECT_EQ(r1.rounds, 1);
   EXPECT_EQ(r3.rounds, 3);
   EXPECT_GT(r3.flips.flips23 + r3.flips.flips32, r1.flips.flips23 + r1.flips.flips32);
@@ -300,8 +301,7 @@ TEST(TetFlip, IdenticalForOneAndTwoThreads) {
     ClassifiedTetMesh m = input;
     TetOptParams p;
     p.enabled = true;
-    optimize_tets(m, p);
-    return m;
+    return optimize_tets(m, p);
   };
   const ClassifiedTetMesh a = run(1), b = run(2);
   ASSERT_EQ(a.num_tets(), b.num_tets());

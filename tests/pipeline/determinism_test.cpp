@@ -58,7 +58,8 @@ StageResult run_stages(const TetSoup& soup, const StageParams& p, const std::str
   const ClassifiedTetMesh m = classify(soup, p.classify);
   r.mesh = build_dual(m, p.dual);
   r.verdicts_before = star_shaped_verdicts(r.mesh);
-  r.optim = optimize(r.mesh, &m, p.optim);
+  const ModelFacets facets = model_facets(m);
+  r.optim = optimize(r.mesh, &facets, p.optim);
   r.verdicts_after = star_shaped_verdicts(r.mesh);
   // The library entry runs the same stages: the same mesh and verdicts.
   PipelineParams pp;

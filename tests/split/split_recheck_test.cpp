@@ -24,16 +24,6 @@ struct Tally {
   std::size_t rounds = 0, reused = 0, rechecked = 0, flipped = 0;
 };
 
-std::vector<VertexId> internal_of_input(const ClassifiedTetMesh& m) {
-  std::vector<VertexId> out;
-  for (std::size_t v = 0; v < m.num_vertices(); ++v) {
-    const std::uint32_t in = m.input_vertex(VertexId(v));
-    if (in >= out.size()) out.resize(in + 1, VertexId::invalid());
-    out[in] = VertexId(v);
-  }
-  return out;
-}
-
 // The vertices of the invalid cells, and (round 1 only) every 5th vertex
 // besides, so that whole cuts land all over the mesh.
 void escalate(const ClassifiedTetMesh& m, const PolyMesh& mesh, const CheckResult& check, int round,
