@@ -268,7 +268,8 @@ FoamCase build_case(const PolyMesh& m, const ModelNames& names, FoamReport& repo
     z.faces.push_back(static_cast<Label>(i));
     z.flip.push_back(flip);
   }
-  for (auto& [key, z] : zones) {  // zones of one model name are one zone
+  for (auto& entry : zones) {  // zones of one model name are one zone
+    FaceZone& z = entry.second;  // not a structured binding: the lambda captures it
     auto same = std::find_if(fc.face_zones.begin(), fc.face_zones.end(), [&](const FaceZone& o) { return o.name == z.name; });
     if (same == fc.face_zones.end()) { fc.face_zones.push_back(std::move(z)); continue; }
     same->faces.insert(same->faces.end(), z.faces.begin(), z.faces.end());
