@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "core/stopwatch.h"
+#include "core/union_find.h"
 #include "dual/build_dual.h"
 #include "quality/metrics.h"
 #include "quality/stencil.h"
@@ -44,26 +45,22 @@ void for_star_joins(const ClassifiedTetMesh& m, VertexId v, F&& f) {
   }
 }
 
-std::uint32_t root(std::vector<std::uint32_t>& p, std::uint32_t x) {
-  while (p[x] != x) x = p[x] = p[p[x]];
-  return x;
-}
-
 // A whole vertex being coarsened: its classes as a union-find over its star
 // tets, and the pairs of star tets it may join (sharing an interior
 // triangle through v that no free-edge cut of v separates).
 struct Vertex {
   VertexId v;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> joins;
-  std::vector<std::uint32_t> parent, saved;
+  std::uint32_t size = 0;  // star tets
+  UnionFind parent{0}, saved{0};
   std::vector<std::pair<std::uint32_t, std::uint32_t>> picks;      // this pass's merges (class roots)
   std::vector<std::pair<std::uint32_t, std::uint32_t>> forbidden;  // merges taken back (star tets)
   int failures = 0;
   bool done = false, proposing = false, partial = false;
 
   std::vector<std::uint32_t> labels() {
-    std::vector<std::uint32_t> l(parent.size());
-    for (std::uint32_t k = 0; k < l.size(); ++k) l[k] = root(parent, k);
+    std::vector<std::uint32_t> l(size);
+    for (std::uint32_t k = 0; k < l.size(); ++k) l[k] = parent.find(k);
     return l;
   }
 };
@@ -71,8 +68,8 @@ struct Vertex {
 Vertex make_vertex(const ClassifiedTetMesh& m, const VertexCuts& free_edge, VertexId v) {
   Vertex x;
   x.v = v;
-  x.parent.resize(m.vertex_tets(v).size());
-  for (std::uint32_t k = 0; k < x.parent.size(); ++k) x.parent[k] = k;
+  x.size = std::uint32_t(m.vertex_tets(v).size());
+  x.parent = UnionFind(x.size);
   for_star_joins(m, v, [&](std::uint32_t k, std::uint32_t o, TriId t) {
     if (!free_edge.cuts(v, t)) x.joins.emplace_back(k, o);
   });
@@ -82,7 +79,7 @@ Vertex make_vertex(const ClassifiedTetMesh& m, const VertexCuts& free_edge, Vert
 // Whether merging the classes with roots ra and rb was taken back before.
 bool forbidden_pair(Vertex& x, std::uint32_t ra, std::uint32_t rb) {
   for (const auto& [a, b] : x.forbidden) {
-    const std::uint32_t fa = root(x.parent, a), fb = root(x.parent, b);
+    const std::uint32_t fa = x.parent.find(a), fb = x.parent.find(b);
     if ((fa == ra && fb == rb) || (fa == rb && fb == ra)) return true;
   }
   return false;
@@ -94,12 +91,12 @@ bool forbidden_pair(Vertex& x, std::uint32_t ra, std::uint32_t rb) {
 std::size_t propose(Vertex& x) {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> cand;
   for (const auto& [a, b] : x.joins) {
-    const std::uint32_t ra = root(x.parent, a), rb = root(x.parent, b);
+    const std::uint32_t ra = x.parent.find(a), rb = x.parent.find(b);
     if (ra != rb && !forbidden_pair(x, ra, rb)) cand.emplace_back(std::min(ra, rb), std::max(ra, rb));
   }
   std::sort(cand.begin(), cand.end());
   cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
-  std::vector<char> matched(x.parent.size(), 0);
+  std::vector<char> matched(x.size, 0);
   std::vector<std::pair<std::uint32_t, std::uint32_t>> pick;
   for (const auto& [a, b] : cand)
     if (!matched[a] && !matched[b]) {
@@ -110,7 +107,7 @@ std::size_t propose(Vertex& x) {
   pick.resize(std::max<std::size_t>(1, pick.size() >> x.failures));
   x.saved = x.parent;
   x.picks = std::move(pick);
-  for (const auto& [a, b] : x.picks) x.parent[b] = a;
+  for (const auto& [a, b] : x.picks) x.parent.unite(a, b);  // roots, a < b: b joins a
   return x.picks.size();
 }
 
@@ -148,17 +145,17 @@ void revert_all(Vertex& x, CoarsenStats& st) {
 // sides of x.v (sides of the trial's cuts) and forbids them.
 void revert_sides(const ClassifiedTetMesh& m, Vertex& x, const VertexCuts& cuts, std::span<const std::uint32_t> sides) {
   const std::vector<std::uint32_t> side = star_sides(m, x.v, &cuts);
-  std::vector<char> bad_root(x.parent.size(), 0);
+  std::vector<char> bad_root(x.size, 0);
   for (std::uint32_t k = 0; k < side.size(); ++k)
-    if (std::find(sides.begin(), sides.end(), side[k]) != sides.end()) bad_root[root(x.parent, k)] = 1;
+    if (std::find(sides.begin(), sides.end(), side[k]) != sides.end()) bad_root[x.parent.find(k)] = 1;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> keep;
   for (const auto& pr : x.picks) {
-    if (bad_root[root(x.parent, pr.first)]) x.forbidden.push_back(pr);
+    if (bad_root[x.parent.find(pr.first)]) x.forbidden.push_back(pr);
     else keep.push_back(pr);
   }
   x.parent = x.saved;
   x.picks = std::move(keep);
-  for (const auto& [a, b] : x.picks) x.parent[b] = a;
+  for (const auto& [a, b] : x.picks) x.parent.unite(a, b);
   x.proposing = !x.picks.empty();
   x.partial = true;
 }
