@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # End-to-end benchmark, file to file (design §12): per
 # domain and size, in the same run and interleaved,
-#   raw      polydual convert IN.msh -o OUT.vtu --optimize none
+#   raw      polydual convert IN.msh -o OUT.vtu --optimize none --no-optimize-tets (the bare dual)
 #   default  polydual convert IN.msh -o OUT.vtu          (certified valid, smoothed)
 #   untangle polydual convert IN.msh -o OUT.vtu --optimize untangle (certified
 #            valid): its optimiser seconds against a budget, the same run's
@@ -69,7 +69,7 @@ prepare() {
   [ -s "$w/in.msh" ] || "$bin" generate "$d" --tets "$n" -o "$w/in.msh" 2> /dev/null
   [ -s "$w/in22.msh" ] || gmsh "$w/in.msh" -save -format msh22 -o "$w/in22.msh" > /dev/null 2>&1
   rm -rf "$w/of" "$w/sys"
-  "$bin" convert "$w/in.msh" -o "$w/sys" --format foam --optimize none --quiet > /dev/null
+  "$bin" convert "$w/in.msh" -o "$w/sys" --format foam --optimize none --no-optimize-tets --quiet > /dev/null
   mkdir -p "$w/of"
   cp -r "$w/sys/system" "$w/of/"
   timed "$w/g2f" gmshToFoam "$w/in22.msh" -case "$w/of"
@@ -92,7 +92,7 @@ for n in "${size_list[@]}"; do
     w="$work/${d}_$n"
     prepare "$w" "$d" "$n"
     for i in $(seq 1 "$repeats"); do  # interleaved: the machine's drift hits both
-      timed "$w/raw.$i" "$bin" convert "$w/in.msh" -o "$w/raw.vtu" --optimize none --json --quiet --threads "$threads"
+      timed "$w/raw.$i" "$bin" convert "$w/in.msh" -o "$w/raw.vtu" --optimize none --no-optimize-tets --json --quiet --threads "$threads"
       timed "$w/untangle.$i" "$bin" convert "$w/in.msh" -o "$w/untangle.vtu" --optimize untangle --json --quiet --threads "$threads"
       run_pdm "$w" "$i"
     done

@@ -33,7 +33,7 @@ for n in $sizes; do
   for d in cube twomat fichera fracture; do
     w="$work/${d}_$n"; mkdir -p "$w"
     [ -f "$w/in.msh" ] || "$bin" generate "$d" --tets "$n" -o "$w/in.msh" 2>/dev/null
-    polydual_run "$w" pd --optimize none
+    polydual_run "$w" pd --optimize none --no-optimize-tets
     polydual_run "$w" pdo
     # OpenFOAM polyDualMesh (gmshToFoam reads Gmsh 2.2)
     rm -rf "$w/of_case"; mkdir -p "$w/of_case"

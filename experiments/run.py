@@ -166,8 +166,7 @@ class Harness:
         cmd = [self.polydual, "convert", src, "-o", vtu, "--json", "--boundary", "caps", "--optimize", opt,
                "--metric", metric, "--derivatives", deriv] + (PAPER_LOCAL if opt == "local" else [])
         cmd += EXTRA_FLAGS.get(variant, [])
-        if inp == "tetopt":
-            cmd += ["--optimize-tets"]
+        cmd += ["--optimize-tets"] if inp == "tetopt" else ["--no-optimize-tets"]
         if self.a.max_iter:
             cmd += ["--max-iter", str(self.a.max_iter)]
         if self.cached(name, cmd) and os.path.exists(vtu):

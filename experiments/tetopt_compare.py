@@ -27,9 +27,9 @@ REPO = os.path.dirname(HERE)
 DOMAINS = ["cube", "twomat", "fichera", "fracture"]
 # variant -> extra convert options
 VARIANTS = {
-    "none": ["--optimize", "none"],
-    "local": ["--optimize", "local"],
-    "global": ["--optimize", "global"],
+    "none": ["--no-optimize-tets", "--optimize", "none"],
+    "local": ["--no-optimize-tets", "--optimize", "local"],
+    "global": ["--no-optimize-tets", "--optimize", "global"],
     # --optimize-tets: the moves, then the Delaunay flips (the default) ...
     "tetopt_none": ["--optimize-tets", "--optimize", "none"],
     "tetopt_local": ["--optimize-tets", "--optimize", "local"],
@@ -41,9 +41,9 @@ VARIANTS = {
     "tetopt_r2_none": ["--optimize-tets", "--tet-flip-rounds", "2", "--optimize", "none"],
     "tetopt_r3_none": ["--optimize-tets", "--tet-flip-rounds", "3", "--optimize", "none"],
     # The face-flatness term, local scheme.
-    "planarity_1": ["--optimize", "local", "--planarity", "1"],
-    "planarity_10": ["--optimize", "local", "--planarity", "10"],
-    "planarity_100": ["--optimize", "local", "--planarity", "100"],
+    "planarity_1": ["--no-optimize-tets", "--optimize", "local", "--planarity", "1"],
+    "planarity_10": ["--no-optimize-tets", "--optimize", "local", "--planarity", "10"],
+    "planarity_100": ["--no-optimize-tets", "--optimize", "local", "--planarity", "100"],
 }
 DEFAULT_VARIANTS = [v for v in VARIANTS if not v.startswith("planarity") and v != "tetopt_global"]
 

@@ -20,7 +20,7 @@ const CommandSpec kConvert{
     "VTU (VTK_POLYHEDRON) or an OpenFOAM case directory (OUT/constant/polyMesh).\n"
     "IN is read by its extension: " + mesh_extensions_text() + ".",
     1, 1,
-    {"-o", "--format", "--force", "--vtu-encoding", "--zlib", "--feature-angle", "--strong-angle", "--boundary", "--no-cleanup", "--collapse-tol", "--optimize", "--planarity", "--optimize-tets", "--tet-sweeps", "--tet-flips", "--tet-flip-rounds", "--no-split", "--split-rounds", "--no-coarsen", "--require-valid", "--metric",
+    {"-o", "--format", "--force", "--vtu-encoding", "--zlib", "--feature-angle", "--strong-angle", "--boundary", "--no-cleanup", "--collapse-tol", "--optimize", "--planarity", "--no-optimize-tets", "--optimize-tets", "--tet-sweeps", "--tet-flips", "--tet-flip-rounds", "--no-split", "--split-rounds", "--no-coarsen", "--require-valid", "--metric",
      "--derivatives", "--relaxation", "--tol", "--polish-sweeps", "--polish-share", "--worst-rounds", "--settle-move", "--max-iter", "--threads", "--json", "--quiet"}};
 
 const CommandSpec kCheck{

@@ -1,5 +1,7 @@
 #include "optim/tet_flip.h"
 
+#include "optim/tet_optimize.h"
+
 #include <algorithm>
 #include <deque>
 #include <stdexcept>
@@ -89,6 +91,7 @@ struct FlipMesh {
   }
   const Point3& p(std::uint32_t v) const { return pts[v]; }
   Sign orient(const Tet& t) const { return orient3d(p(t[0]), p(t[1]), p(t[2]), p(t[3])); }
+  double quality(const Tet& t) const { return tet_quality(p(t[0]), p(t[1]), p(t[2]), p(t[3])); }
   int local(std::uint32_t t, std::uint32_t v) const {
     for (int i = 0; i < 4; ++i)
       if (tv[t][i] == v) return i;
@@ -194,7 +197,23 @@ void replace(FlipMesh& w, std::span<const std::uint32_t> old, std::span<const Te
     }
 }
 
-enum class FlipOutcome { Flipped23, Flipped32, Nonconvex, Degenerate, ConstrainedEdge };
+enum class FlipOutcome { Flipped23, Flipped32, Nonconvex, Degenerate, ConstrainedEdge, WorseTet };
+
+// Lawson flips alone restore the Delaunay property whatever the shapes: on
+// near-cospherical points (lattices, the moved vertices) they made tets whose
+// corners round to a zero volume (tet_quality +infinity), whose barycentric
+// corners the split's whole cuts then could not make valid. A flip may worsen
+// a tet (the repair needs it) but not past kFlipQualityCap nor past the worst
+// tet it replaces, whichever is larger (floating point; it decides no sign).
+constexpr double kFlipQualityCap = 1e3;
+
+bool no_worse(const FlipMesh& w, std::span<const std::uint32_t> old, std::span<const Tet> fresh) {
+  double bound = kFlipQualityCap;
+  for (std::uint32_t t : old) bound = std::max(bound, w.quality(w.tv[t]));
+  for (const Tet& t : fresh)
+    if (!(w.quality(t) <= bound)) return false;
+  return true;
+}
 
 // 3-2 flip of the edge (x, y) of face (t, i) shared with u, where z is the
 // face's third vertex: the edge must have exactly three tets (t, u and the
@@ -216,6 +235,7 @@ FlipOutcome try_flip32(FlipMesh& w, std::uint32_t t, std::uint32_t u, std::uint3
   if (w.orient(a) != Sign::Positive || w.orient(b) != Sign::Positive) return FlipOutcome::Nonconvex;
   const std::uint32_t old[3] = {t, u, s};
   const Tet fresh[2] = {a, b};
+  if (!no_worse(w, old, fresh)) return FlipOutcome::WorseTet;
   replace(w, old, fresh);
   return FlipOutcome::Flipped32;
 }
@@ -237,6 +257,7 @@ FlipOutcome try_flip(FlipMesh& w, std::uint32_t t, int i) {
   }
   if (sign[0] == Sign::Positive && sign[1] == Sign::Positive && sign[2] == Sign::Positive) {
     const std::uint32_t old[2] = {t, u};
+    if (!no_worse(w, old, fresh)) return FlipOutcome::WorseTet;
     replace(w, old, fresh);
     return FlipOutcome::Flipped23;
   }
@@ -256,6 +277,7 @@ void count_outcome(FlipOutcome o, TetFlipReport& rep) {
     case FlipOutcome::Nonconvex: ++rep.blocked_nonconvex; break;
     case FlipOutcome::Degenerate: ++rep.blocked_degenerate; break;
     case FlipOutcome::ConstrainedEdge: ++rep.blocked_constrained_edge; break;
+    case FlipOutcome::WorseTet: ++rep.blocked_worse_tet; break;
   }
 }
 
@@ -368,6 +390,8 @@ Json TetFlipReport::to_json() const {
   j.set("blocked_nonconvex", blocked_nonconvex);
   j.set("blocked_degenerate", blocked_degenerate);
   j.set("blocked_constrained_edge", blocked_constrained_edge);
+  j.set("blocked_worse_tet", blocked_worse_tet);
+  if (!failed.empty()) j.set("failed", failed);
   j.set("tets_before", tets_before);
   j.set("tets_after", tets_after);
   j.set("hit_limit", hit_limit);
@@ -381,7 +405,9 @@ void TetFlipReport::accumulate(const TetFlipReport& o) {
   flips23 += o.flips23, flips32 += o.flips32;
   blocked_nonconvex += o.blocked_nonconvex, blocked_degenerate += o.blocked_degenerate;
   blocked_constrained_edge += o.blocked_constrained_edge;
+  blocked_worse_tet += o.blocked_worse_tet;
   hit_limit = hit_limit || o.hit_limit;
+  if (failed.empty()) failed = o.failed;
   seconds += o.seconds;
 }
 
@@ -393,7 +419,19 @@ ClassifiedTetMesh delaunay_flips(const ClassifiedTetMesh& mesh, const TetFlipPar
   rep.tets_before = mesh.num_tets();
   FlipMesh w(mesh);
   run_flips(w, params, rep);
-  ClassifiedTetMesh out = rebuild(mesh, w);
+  ClassifiedTetMesh out;
+  try {
+    out = rebuild(mesh, w);
+  } catch (const InputError& e) {
+    // The flipped tets do not form a conformal mesh: a defect of the pass on
+    // some fracture and notch configurations of the random classified
+    // meshes (seed 150 of tests/split/split_pipeline_test.cpp's families),
+    // not yet found. The input is kept: the flips are an improvement, never
+    // a condition of correctness.
+    rep.failed = e.what();
+    rep.flips23 = rep.flips32 = 0;
+    out = mesh;
+  }
   rep.after = count_non_delaunay(out);
   rep.tets_after = out.num_tets();
   rep.seconds = clock.seconds();

@@ -17,7 +17,10 @@
 //  - a triangle on a model face (boundary, interface, fracture) is never
 //    removed; an edge classified on a model edge or face (dim < 3) is never
 //    removed; vertices are neither moved, added nor removed;
-//  - every tet created is positive by the exact orient3d;
+//  - every tet created is positive by the exact orient3d, and its quality
+//    (tet_quality, floating point) at most 1e3 or the worst of the tets it
+//    replaces: Lawson flips on near-cospherical points otherwise make tets
+//    flat to rounding;
 //  - the tets of a flip all lie in one region (implied: their shared
 //    triangles are not on a model face) and the new tets get that region.
 // New triangles and edges lie inside one region: unclassified triangles and
@@ -31,6 +34,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <string>
 
 #include "core/json.h"
 #include "mesh/classified_tet_mesh.h"
@@ -73,6 +77,10 @@ struct TetFlipReport {
   // configuration), or the reflex edge is on a model edge or face
   // (`constrained_edge`).
   std::uint64_t blocked_nonconvex = 0, blocked_degenerate = 0, blocked_constrained_edge = 0;
+  std::uint64_t blocked_worse_tet = 0;
+  // Non-empty: the flipped tets were not a conformal mesh (the message of the
+  // rebuild's error) and the input was returned unflipped.
+  std::string failed;  // a new tet past the flip's quality bound (tet_flip.cpp)
   std::size_t tets_before = 0, tets_after = 0;
   bool hit_limit = false;
   double seconds = 0;

@@ -106,8 +106,38 @@ VertexFrame edge_frame(const ClassifiedTetMesh& m, VertexId v, std::int32_t tag)
   return fr;
 }
 
-VertexFrame make_frame(const ClassifiedTetMesh& m, VertexId v) {
+// Whether the model-face triangles around v are all in one plane, for every
+// model face through v (EXACT: orient3d of each of their vertices against
+// the first triangle), and, on a model edge, its two segments at v on one
+// line (EXACT: orient2d in the three coordinate planes).
+bool flat_at(const ClassifiedTetMesh& m, VertexId v) {
+  std::vector<std::int32_t> tags;
+  for (TetId t : m.vertex_tets(v)) {
+    const int li = m.local_index(t, v);
+    for (int f = 0; f < 4; ++f)
+      if (const ModelRef c = m.triangle_class(m.tet_triangle(t, f)); f != li && c.dim == 2) tags.push_back(c.tag);
+  }
+  std::sort(tags.begin(), tags.end());
+  tags.erase(std::unique(tags.begin(), tags.end()), tags.end());
+  for (std::int32_t tag : tags) {
+    const std::vector<TriId> tris = umbrella(m, v, tag);
+    const auto t0 = m.triangle(tris[0]);
+    for (TriId tri : tris)
+      for (VertexId w : m.triangle(tri))
+        if (orient3d(m.point(t0[0]), m.point(t0[1]), m.point(t0[2]), m.point(w)) != Sign::Zero) return false;
+  }
   const ModelRef r = m.vertex_class(v);
+  if (r.dim != 1) return true;
+  const std::vector<VertexId> ends = edge_neighbours(m, v, r.tag);
+  if (ends.size() != 2) return true;
+  const Point3 a = m.point(ends[0]), b = m.point(v), c = m.point(ends[1]);
+  return orient2d(a.x, a.y, b.x, b.y, c.x, c.y) == Sign::Zero && orient2d(a.y, a.z, b.y, b.z, c.y, c.z) == Sign::Zero &&
+         orient2d(a.z, a.x, b.z, b.x, c.z, c.x) == Sign::Zero;
+}
+
+VertexFrame make_frame(const ClassifiedTetMesh& m, VertexId v, bool move_curved) {
+  const ModelRef r = m.vertex_class(v);
+  if (!move_curved && r.dim != 3 && !flat_at(m, v)) return VertexFrame{};
   if (r.dim == 1) return edge_frame(m, v, r.tag);
   if (r.dim == 2) return face_frame(m, v, r.tag);
   if (r.dim == 3) {
@@ -326,6 +356,7 @@ void TetOptParams::validate() const {
 Json TetOptParams::to_json() const {
   Json j = Json::object();
   j.set("enabled", enabled);
+  j.set("move_curved", move_curved);
   j.set("max_sweeps", max_sweeps);
   j.set("tol", tol);
   j.set("max_halvings", max_halvings);
@@ -403,7 +434,7 @@ std::vector<Point3> optimized_tet_points(const ClassifiedTetMesh& mesh, const Te
   State s{mesh, params, mesh.points(), reference_volumes(mesh), {}};
   s.frames.resize(mesh.num_vertices());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.num_vertices(), 256), [&](const auto& r) {
-    for (std::size_t v = r.begin(); v != r.end(); ++v) s.frames[v] = make_frame(mesh, VertexId(v));
+    for (std::size_t v = r.begin(); v != r.end(); ++v) s.frames[v] = make_frame(mesh, VertexId(v), params.move_curved);
   });
   TetOptReport rep;
   rep.before = tet_quality_stats(mesh, s.pts);

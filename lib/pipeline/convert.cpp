@@ -187,6 +187,7 @@ void run_pipeline(ConvertResult& r, const TetSoup& soup, const PipelineParams& p
     stats = st.to_json();
     return m;
   });
+  r.input_tets = r.primal.num_tets();
   if (release) *release = TetSoup{};
   if (params.tetopt.enabled)
     r.primal = run_stage(rep, hooks, "optimize_tets", [&](Json& stats) {

@@ -43,6 +43,9 @@ struct ConvertReport {
 
 struct ConvertResult {
   ClassifiedTetMesh primal;  // the classified input (the optimiser and writers read it)
+  // The input's tets: primal's count unless the tet optimisation's flips
+  // changed it (0: not set, primal's count).
+  std::size_t input_tets = 0;
   PolyMesh mesh;             // the polyhedral dual, optimised when asked
   CheckResult check;         // validation and exact verdicts of `mesh` as returned
   ConvertReport report;

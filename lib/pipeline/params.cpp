@@ -18,6 +18,9 @@ void PipelineParams::validate() const {
     throw UsageError(std::string("PipelineParams: the dual's boundary is '") + boundary_mode_name(dual.boundary) +
                      "' but the optimiser's constraints are for '" + (optim.keep_boundary ? "keep" : "caps") +
                      "' (set both with set_boundary)");
+  if (dual.boundary == BoundaryMode::Keep && tetopt.enabled && tetopt.move_curved)
+    throw UsageError("PipelineParams: the keep boundary keeps each material's volume but the tet optimiser "
+                     "moves vertices on curved model faces (set both with set_boundary)");
 }
 
 Json PipelineParams::to_json() const {

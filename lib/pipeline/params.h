@@ -19,11 +19,14 @@ struct PipelineParams {
   OptimParams optim;        // untangling and smoothing (method None skips the stage)
   SplitParams split;        // split of the cells still invalid (enabled = false skips the stage)
 
-  // The dual's boundary mode and the optimiser's matching constraints
-  // (DualParams::boundary, OptimParams::keep_boundary) together.
+  // The dual's boundary mode and the optimisers' matching constraints
+  // (DualParams::boundary, OptimParams::keep_boundary, and
+  // TetOptParams::move_curved off in the keep mode: the tets keep the
+  // model's shape where the dual promises each material's volume) together.
   void set_boundary(BoundaryMode m) {
     dual.boundary = m;
     optim.keep_boundary = m == BoundaryMode::Keep;
+    tetopt.move_curved = m == BoundaryMode::Caps;
   }
 
   // Throws UsageError naming the first bad field, its unit and its range, or

@@ -2,8 +2,13 @@
 
 #include <map>
 
+#include <algorithm>
+#include <cmath>
+
 #include "core/error.h"
 #include "quality/flatness.h"
+#include "quality/metrics.h"
+#include "quality/model_wedge.h"
 
 namespace polydual {
 
@@ -139,6 +144,49 @@ Json peak_memory_summary(const ConvertReport& report) {
   return j;
 }
 
+// The cells above OptimReport::kWorstBound at the end (worst first, at most
+// kMaxWorstCells), each with the model's shape at its primal vertex as its
+// material's tets see it (quality/model_wedge.h): a small wedge or solid
+// angle says the model leaves the cell no room; a cell without one is the
+// optimiser's to improve. Null for a mesh with no primal vertices.
+Json worst_cells_summary(const ConvertResult& r, Metric metric) {
+  const PolyMesh& pm = r.mesh;
+  if (pm.num_cells() == 0 || pm.cell_primal.size() != pm.num_cells()) return Json();
+  const std::vector<double> q = cell_qualities(build_stencil(pm), metric, pm.points);
+  std::vector<std::pair<double, std::uint32_t>> above;
+  for (std::uint32_t c = 0; c < q.size(); ++c)
+    if (!(q[c] <= OptimReport::kWorstBound)) above.push_back({q[c], c});
+  std::sort(above.begin(), above.end(), [](const auto& a, const auto& b) {
+    return a.first != b.first ? a.first > b.first : a.second < b.second;
+  });
+  Json j = Json::object();
+  j.set("bound", OptimReport::kWorstBound);
+  j.set("cells_above", above.size());
+  if (above.size() > OptimReport::kMaxWorstCells) above.resize(OptimReport::kMaxWorstCells);
+  const std::vector<VertexId> internal = internal_of_input(r.primal);
+  Json cells = Json::array();
+  for (const auto& [quality, c] : above) {
+    Json w = Json::object();
+    w.set("cell", c);
+    w.set("quality", std::isfinite(quality) ? Json(quality) : Json());
+    const VertexId in = pm.cell_primal[c];
+    w.set("primal_vertex", in.idx);
+    if (in.idx < internal.size() && internal[in.idx].valid()) {
+      const VertexId v = internal[in.idx];
+      const ModelRef cls = r.primal.vertex_class(v);
+      const VertexWedge wedge = vertex_wedge(r.primal, v, pm.cell_material[c]);
+      w.set("class", kClassNames[cls.dim]);
+      w.set("tag", cls.tag);
+      w.set("solid_angle_sr", wedge.solid_angle_sr);
+      w.set("min_wedge_deg", wedge.min_wedge_deg);
+      w.set("wedge_model_edge", wedge.wedge_edge.dim == 1 ? Json(wedge.wedge_edge.tag) : Json());
+    }
+    cells.push(std::move(w));
+  }
+  j.set("cells", std::move(cells));
+  return j;
+}
+
 }  // namespace
 
 Json ignored_summary(const IgnoredEntities& ignored) {
@@ -223,7 +271,7 @@ Json convert_summary(const ConvertResult& r, const PipelineParams& params) {
     j.set("input", *read->stats.find("path"));
   }
   if (r.written.find("path")) j.set("output", r.written);
-  j.set("tets", r.primal.num_tets());
+  j.set("tets", r.input_tets ? r.input_tets : r.primal.num_tets());
   j.set("vertices", r.primal.num_vertices());
   j.set("ignored", ignored_summary(r.ignored));
   Json warnings = Json::array();
@@ -251,6 +299,7 @@ Json convert_summary(const ConvertResult& r, const PipelineParams& params) {
   const StageRecord* split = r.report.stage("split");
   j.set("split", split ? split->stats : Json());
   if (const StageRecord* tet = r.report.stage("optimize_tets")) j.set("optimize_tets", tet->stats);
+  j.set("worst_cells", worst_cells_summary(r, params.optim.metric));
   j.set("params", params.to_json());
   j.set("seconds", seconds_summary(r.report));
   j.set("peak_rss_mb", peak_memory_summary(r.report));

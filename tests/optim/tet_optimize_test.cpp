@@ -7,6 +7,7 @@
 #include <tbb/global_control.h>
 
 #include <cmath>
+#include <map>
 #include <random>
 #include <limits>
 
@@ -118,6 +119,54 @@ TEST(TetOptimize, BoundaryVerticesStayOnTheirModelEntities) {
     }
     EXPECT_GT(moved_face, 10u);
     EXPECT_GT(moved_edge, 0u);
+  }
+}
+
+// The volume of each region's tets at the given coordinates.
+std::map<std::int32_t, double> region_volumes(const ClassifiedTetMesh& m, std::span<const Point3> pts) {
+  std::map<std::int32_t, double> vol;
+  for (std::size_t t = 0; t < m.num_tets(); ++t) {
+    const auto& v = m.tet(TetId(t));
+    const Point3 &a = pts[v[0].idx], &b = pts[v[1].idx], &c = pts[v[2].idx], &d = pts[v[3].idx];
+    vol[m.region(TetId(t))] += dot(cross(b - a, c - a), d - a) / 6.0;
+  }
+  return vol;
+}
+
+// Without move_curved, a boundary vertex moves only where the model is flat
+// around it: the box's faces and straight edges (axis planes), never the
+// jagged interface x = 3, so each region keeps its volume; with it, the
+// interface's vertices move and the regions' volumes change (the test's own
+// check that it can fail).
+TEST(TetOptimize, FlatOnlyKeepsTheModelAndEachRegionsVolume) {
+  const ClassifiedTetMesh m = perturbed_kuhn(6, 0.2, 4);
+  const auto before = region_volumes(m, m.points());
+  for (bool curved : {false, true}) {
+    TetOptParams p;
+    p.max_sweeps = 5;
+    p.move_curved = curved;
+    const std::vector<Point3> pts = optimized_tet_points(m, p);
+    expect_all_positive(m, pts);
+    std::size_t moved_box = 0, moved_interface = 0;
+    for (std::size_t i = 0; i < m.num_vertices(); ++i) {
+      const ModelRef r = m.vertex_class(VertexId(i));
+      if (r.dim != 1 && r.dim != 2 || pts[i] == m.point(VertexId(i))) continue;
+      const Point3& o = m.point(VertexId(i));
+      bool on_box = false;
+      for (int k = 0; k < 3; ++k) on_box |= o[k] == 0.0 || o[k] == 6.0;
+      (on_box ? moved_box : moved_interface) += 1;
+    }
+    EXPECT_GT(moved_box, 10u) << "curved " << curved;
+    const auto after = region_volumes(m, pts);
+    double worst = 0;
+    for (const auto& [tag, v] : before) worst = std::max(worst, std::fabs(after.at(tag) - v) / v);
+    if (curved) {
+      EXPECT_GT(moved_interface, 10u);
+      EXPECT_GT(worst, 1e-6);
+    } else {
+      EXPECT_EQ(moved_interface, 0u);
+      EXPECT_LT(worst, 1e-12);
+    }
   }
 }
 

@@ -57,6 +57,7 @@ TEST(Pipeline, ConvertIsTheCompositionOfTheStages) {
   PipelineParams params;
   params.optim.method = OptimParams::Method::None;
   params.split.enabled = false;  // the split loop: tests/split/split_pipeline_test.cpp
+  params.tetopt.enabled = false;  // the tet optimisation: tests/optim/tet_optimize_test.cpp
   std::vector<std::string> observed;
   const ConvertResult r = convert(soup, params, ConvertHooks{[&](const StageRecord& s) { observed.push_back(s.name); }, {}});
   EXPECT_EQ(stage_names(r.report), (std::vector<std::string>{"classify", "dual", "cleanup", "cells", "check"}));
@@ -85,8 +86,9 @@ TEST(Pipeline, OptimiseStageRunsAndIsChecked) {
   PipelineParams params;
   params.optim.max_iter = 3;
   const ConvertResult r = convert(soup, params);
-  EXPECT_EQ(stage_names(r.report), (std::vector<std::string>{"classify", "cuts", "dual", "cleanup", "cells", "check", "optimize",
-                                                           "check_after", "split", "check_split"}));
+  // The tet optimisation runs by default (TetOptParams::enabled).
+  EXPECT_EQ(stage_names(r.report), (std::vector<std::string>{"classify", "optimize_tets", "cuts", "dual", "cleanup", "cells",
+                                                           "check", "optimize", "check_after", "split", "check_split"}));
   ASSERT_NE(r.report.stage("optimize"), nullptr);
   EXPECT_NE(r.report.stage("optimize")->stats.find("iterations"), nullptr);
   // The final check is of the optimised mesh.
@@ -133,8 +135,8 @@ TEST(Pipeline, ConvertFileReadsAndWrites) {
   PipelineParams params;
   params.optim.method = OptimParams::Method::None;
   const ConvertResult r = convert_file(in, (d / "c.vtu").string(), PolyFormat::Vtu, params);
-  EXPECT_EQ(stage_names(r.report), (std::vector<std::string>{"read", "classify", "cuts", "dual", "cleanup", "cells", "check",
-                                                           "split", "check_split", "write"}));
+  EXPECT_EQ(stage_names(r.report), (std::vector<std::string>{"read", "classify", "optimize_tets", "cuts", "dual", "cleanup",
+                                                           "cells", "check", "split", "check_split", "write"}));
   EXPECT_EQ(r.written.find("format")->dump(0), "\"vtu\"");
   // Each stage records the process's peak memory when it ended: a high-water
   // mark, so never lower than the stage before; the summary names them all.
