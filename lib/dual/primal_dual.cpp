@@ -4,6 +4,7 @@
 #include "dual/primal_dual.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <limits>
 #include <map>
@@ -93,20 +94,94 @@ MixedPoints make_points(const PrimalMesh& m, bool keep, PolyMesh& pm, DualStats&
   return d;
 }
 
+// The local face of a cell of type t whose outward loop runs from local
+// vertex p to q (-1: none): from a cell c around edge (a, b), face
+// [p = a][q = b] leads out of c right-handedly about a -> b, [b][a] leads
+// back (PrimalMesh::edge_chains' rule, as a table instead of a search).
+using LeadTable = std::array<std::array<std::array<std::int8_t, 8>, 8>, 4>;
+constexpr LeadTable make_lead_table() {
+  LeadTable t{};
+  for (auto& type : t)
+    for (auto& row : type) row.fill(-1);
+  for (int ty = 0; ty < 4; ++ty) {
+    const CellDescriptor& d = descriptor(CellType(ty));
+    for (int i = 0; i < d.num_faces; ++i)
+      for (int k = 0; k < d.face_size[i]; ++k)
+        t[ty][d.faces[i][k]][d.faces[i][(k + 1) % d.face_size[i]]] = std::int8_t(i);
+  }
+  return t;
+}
+constexpr LeadTable kLead = make_lead_table();
+
+// The chains of cells around edges (PrimalMesh::edge_chains, the same chains
+// from the same first cells), walked into reused buffers: the dual's faces
+// stage walks every edge, and the allocations and face searches of
+// edge_chains() made it 6x slower per element than the tet builder's.
+struct ChainWalker {
+  std::vector<PrimalCellId> cells;
+  std::vector<PrimalFaceId> faces;
+  std::vector<char> placed;
+  bool closed = false;
+
+  // Calls f() for each chain of e, with cells, faces and closed filled.
+  template <class F>
+  void for_each_chain(const PrimalMesh& m, EdgeId e, F&& f) {
+    const auto [a, b] = m.edge(e);
+    const auto around = m.edge_cells(e);
+    placed.assign(around.size(), 0);
+    for (std::size_t i = 0; i < around.size(); ++i) {
+      if (placed[i]) continue;
+      walk(m, around[i], a, b);
+      for (PrimalCellId c : cells) placed[std::size_t(std::lower_bound(around.begin(), around.end(), c) - around.begin())] = 1;
+      f();
+    }
+  }
+
+ private:
+  // The face of c leading out (which 0) or back (1) about a -> b, and the cell across it.
+  static std::pair<PrimalFaceId, PrimalCellId> lead(const PrimalMesh& m, PrimalCellId c, VertexId a, VertexId b,
+                                                     int which) {
+    const int ia = m.local_index(c, a), ib = m.local_index(c, b);
+    const int i = which == 0 ? kLead[std::size_t(m.cell_type(c))][ia][ib] : kLead[std::size_t(m.cell_type(c))][ib][ia];
+    return {m.cell_face(c, i), m.cell_neighbor(c, i)};
+  }
+  // PrimalMesh::chain_from: back to the chain's first cell (a closed chain
+  // starts after `start`), then forward.
+  void walk(const PrimalMesh& m, PrimalCellId start, VertexId a, VertexId b) {
+    PrimalCellId first = start;
+    for (;;) {
+      const PrimalCellId prev = lead(m, first, a, b, 1).second;
+      if (!prev.valid() || prev == start) break;
+      first = prev;
+    }
+    cells.clear();
+    faces.clear();
+    faces.push_back(lead(m, first, a, b, 1).first);
+    PrimalCellId c = first;
+    do {
+      cells.push_back(c);
+      const auto [f, next] = lead(m, c, a, b, 0);
+      faces.push_back(f);
+      c = next;
+    } while (c.valid() && c != first);
+    closed = c == first;
+  }
+};
+
 // STEP 5-6 for one chain of cells around e = (a, b): the chain is cut at its
 // faces on model faces (an open chain also at its end, a boundary face); each
 // run of cells between two cuts is one face [centre(start face), cells...,
 // centre(end face), midpoint(e) if any], right-handed about a -> b, owned by
 // a's side (the fan faces of build_dual.cpp, chain for ring).
-void chain_faces(const PrimalMesh& m, const PrimalSides& sides, const MixedPoints& d, EdgeId e, const EdgeChain& ch,
-                 PolyMesh& pm, std::vector<std::uint32_t>& scan) {
+void chain_faces(const PrimalMesh& m, const PrimalSides& sides, const MixedPoints& d, EdgeId e, const ChainWalker& ch,
+                 PolyMesh& pm, std::vector<std::uint32_t>& scan, std::vector<std::size_t>& cuts,
+                 std::vector<PointId>& loop) {
   const auto [a, b] = m.edge(e);
   const std::size_t n = ch.cells.size();
-  std::vector<std::size_t> cuts;
+  cuts.clear();
   for (std::size_t k = 0; k < n; ++k)
     if (m.face_class(ch.faces[k]).dim == 2) cuts.push_back(k);
   if (!ch.closed) cuts.push_back(n);  // faces[n] is the closing boundary face
-  std::vector<PointId> loop;
   auto emit = [&](std::size_t s, std::size_t t, bool bounded) {
     loop.clear();
     const PrimalFaceId start = ch.faces[s], end = ch.faces[t > n ? t - n : t];
@@ -128,6 +203,40 @@ void chain_faces(const PrimalMesh& m, const PrimalSides& sides, const MixedPoint
     for (std::size_t j = 0; j + 1 < cuts.size(); ++j) emit(cuts[j], cuts[j + 1], true);
   } else {
     for (std::size_t j = 0; j < cuts.size(); ++j) emit(cuts[j], j + 1 < cuts.size() ? cuts[j + 1] : cuts[0] + n, true);
+  }
+}
+
+// The fan faces of every edge: blocks of edges built apart in parallel (face
+// arrays only, numbered from 0) and appended in edge order, so the faces are
+// the same for any thread count.
+void make_edge_faces(const PrimalMesh& m, const PrimalSides& sides, const MixedPoints& d, PolyMesh& pm,
+                     std::vector<std::uint32_t>& scan) {
+  constexpr std::size_t kBlock = 4096;
+  const std::size_t ne = m.num_edges(), nb = (ne + kBlock - 1) / kBlock;
+  struct Block {
+    PolyMesh faces;
+    std::vector<std::uint32_t> scan;
+  };
+  std::vector<Block> blocks(nb);
+  tbb::parallel_for(std::size_t(0), nb, [&](std::size_t bi) {
+    ChainWalker walker;
+    std::vector<std::size_t> cuts;
+    std::vector<PointId> loop;
+    Block& b = blocks[bi];
+    for (std::size_t e = bi * kBlock; e < std::min(ne, (bi + 1) * kBlock); ++e)
+      walker.for_each_chain(m, EdgeId(e), [&] { chain_faces(m, sides, d, EdgeId(e), walker, b.faces, b.scan, cuts, loop); });
+  });
+  for (Block& b : blocks) {
+    const std::uint32_t f0 = std::uint32_t(pm.num_faces()), p0 = std::uint32_t(pm.face_points.size());
+    const PolyMesh& x = b.faces;
+    pm.face_points.insert(pm.face_points.end(), x.face_points.begin(), x.face_points.end());
+    for (std::size_t f = 1; f < x.face_offsets.size(); ++f) pm.face_offsets.push_back(p0 + x.face_offsets[f]);
+    pm.face_owner.insert(pm.face_owner.end(), x.face_owner.begin(), x.face_owner.end());
+    pm.face_neighbour.insert(pm.face_neighbour.end(), x.face_neighbour.begin(), x.face_neighbour.end());
+    pm.face_kind.insert(pm.face_kind.end(), x.face_kind.begin(), x.face_kind.end());
+    pm.face_tag.insert(pm.face_tag.end(), x.face_tag.begin(), x.face_tag.end());
+    for (std::uint32_t f : b.scan) scan.push_back(f0 + f);
+    b = Block{};
   }
 }
 
@@ -246,8 +355,7 @@ DualDraft build_primal_dual_draft(const PrimalMesh& m, const DualParams& params,
   st.seconds_sides = since(t0);
   t0 = Clock::now();
   std::vector<std::uint32_t> scan;
-  for (std::size_t e = 0; e < m.num_edges(); ++e)
-    for (const EdgeChain& ch : m.edge_chains(EdgeId(e))) chain_faces(m, sides, d, EdgeId(e), ch, pm, scan);
+  make_edge_faces(m, sides, d, pm, scan);
   const std::size_t first_cap = pm.num_faces();
   make_primal_caps(m, sides, d, primal_face_kinds(m), keep, pm, st);
   for (std::size_t f = first_cap; f < pm.num_faces(); ++f) scan.push_back(std::uint32_t(f));
