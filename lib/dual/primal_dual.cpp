@@ -50,11 +50,23 @@ MixedPoints make_points(const PrimalMesh& m, bool keep, PolyMesh& pm, DualStats&
   // Independent per cell: parallel, the same result for any thread count.
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nc, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t c = r.begin(); c < r.end(); ++c) {
-      const CentralPoint cp = cell_central_point(m, PrimalCellId(c));
+      // A tet's centre by cell_central_point (circumcentre or clamped, as
+      // the tet builder's); another cell's is its vertex mean (the same rule)
+      // without the exact inside test, which nothing here reads (it cost a
+      // third of the points stage on a hex block).
+      const PrimalCellId cid(c);
+      const bool tet = m.cell_type(cid) == CellType::Tet;
+      CentralPoint cp{{0, 0, 0}, false, 0};
+      if (tet) {
+        cp = cell_central_point(m, cid);
+      } else {
+        const auto cv = m.cell_vertices(cid);
+        for (VertexId v : cv) cp.p = cp.p + m.point(v);
+        cp.p = cp.p * (1.0 / double(cv.size()));
+      }
       pm.points[c] = cp.p;
-      pm.point_class[c] = m.cell_class(PrimalCellId(c));
+      pm.point_class[c] = m.cell_class(cid);
       pm.point_origin[c] = PointOrigin{3, std::uint32_t(c)};
-      const bool tet = m.cell_type(PrimalCellId(c)) == CellType::Tet;
       d.cell_error[c] = tet && cp.well_centred ? cp.error : -std::numeric_limits<double>::infinity();
     }
   });
@@ -113,8 +125,8 @@ constexpr LeadTable make_lead_table() {
 }
 constexpr LeadTable kLead = make_lead_table();
 
-// The chains of cells around edges (PrimalMesh::edge_chains, the same chains
-// from the same first cells), walked into reused buffers: the dual's faces
+// The chains of cells around edges (PrimalMesh::edge_chains' chains; a
+// closed one may start elsewhere round the edge), walked into reused buffers: the dual's faces
 // stage walks every edge, and the allocations and face searches of
 // edge_chains() made it 6x slower per element than the tet builder's.
 struct ChainWalker {
@@ -145,15 +157,21 @@ struct ChainWalker {
     const int i = which == 0 ? kLead[std::size_t(m.cell_type(c))][ia][ib] : kLead[std::size_t(m.cell_type(c))][ib][ia];
     return {m.cell_face(c, i), m.cell_neighbor(c, i)};
   }
-  // PrimalMesh::chain_from: back to the chain's first cell (a closed chain
-  // starts after `start`), then forward.
+  // Forward from `start`; if the walk comes back to it the chain is closed
+  // and starts there (one lap, where PrimalMesh::chain_from walks two and
+  // starts a cell later: the same cyclic chain). Otherwise back to the open
+  // chain's first cell, then forward from it.
   void walk(const PrimalMesh& m, PrimalCellId start, VertexId a, VertexId b) {
+    if (forward(m, start, a, b)) return;
     PrimalCellId first = start;
     for (;;) {
       const PrimalCellId prev = lead(m, first, a, b, 1).second;
-      if (!prev.valid() || prev == start) break;
+      if (!prev.valid()) break;
       first = prev;
     }
+    forward(m, first, a, b);
+  }
+  bool forward(const PrimalMesh& m, PrimalCellId first, VertexId a, VertexId b) {
     cells.clear();
     faces.clear();
     faces.push_back(lead(m, first, a, b, 1).first);
@@ -165,6 +183,7 @@ struct ChainWalker {
       c = next;
     } while (c.valid() && c != first);
     closed = c == first;
+    return closed;
   }
 };
 
