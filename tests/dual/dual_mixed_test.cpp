@@ -7,6 +7,8 @@
 #include <cmath>
 #include <map>
 
+#include <tbb/task_arena.h>
+
 #include "classify/classify.h"
 #include "classify/classify_primal.h"
 #include "dual/build_dual.h"
@@ -355,6 +357,43 @@ TEST(DualMixed, HexesJoinedToTetsThroughPyramids) {
     // star-shaped (57 caps, 32 keep), which the optimiser repairs.
     expect_sound(build_primal_dual(m, dp), 1.0, std::string("pyramids ") + boundary_mode_name(mode), &m);
   }
+}
+
+// The model facetisation of a PrimalMesh: each model-face quadrangle is two
+// triangles with its face id, and every dual point made from a face or edge
+// on a model entity finds its facet by PointOrigin id.
+TEST(DualMixed, ModelFacetsOfAPrimalMesh) {
+  const PrimalMesh m = build_primal(cell_soup(hex_block_soup(3)));
+  const ModelFacets f = model_facets(m);
+  std::size_t quads = 0;
+  for (std::size_t i = 0; i < m.num_faces(); ++i) quads += m.face_class(PrimalFaceId(i)).dim == 2;
+  EXPECT_EQ(f.triangles.size(), 2 * quads);  // every face is a quadrangle
+  EXPECT_EQ(quads, 6u * 9 + 9);              // the box's 54 and the interface's 9
+  EXPECT_EQ(f.segments.size(), 12u * 3 + 4 * 3);  // the box's edges and the interface's rim
+  for (std::size_t k = 0; k + 1 < f.triangles.size(); ++k) EXPECT_LE(f.triangles[k].src, f.triangles[k + 1].src);
+  const PolyMesh pm = build_primal_dual(m);
+  for (std::size_t p = 0; p < pm.num_points(); ++p) {
+    const PointOrigin o = pm.point_origin[p];
+    if (o.dim != 1 && o.dim != 2) continue;
+    const auto& list = o.dim == 2 ? f.triangles : f.segments;
+    const auto it = std::find_if(list.begin(), list.end(), [&](const ModelFacet& x) { return x.src == o.id; });
+    ASSERT_NE(it, list.end()) << "point " << p;
+    EXPECT_EQ(it->tag, pm.point_class[p].tag) << "point " << p;
+  }
+}
+
+// The same dual, byte for byte, on one thread and on all of them.
+TEST(DualMixed, DeterministicForAnyThreadCount) {
+  const PrimalMesh m = build_primal(cell_soup(hex_pyramid_tet_soup(4)));
+  const PolyMesh all = build_primal_dual(m);
+  tbb::task_arena one(1);
+  const PolyMesh single = one.execute([&] { return build_primal_dual(m); });
+  EXPECT_EQ(all.points, single.points);
+  EXPECT_EQ(all.face_points, single.face_points);
+  EXPECT_EQ(all.face_offsets, single.face_offsets);
+  EXPECT_EQ(all.face_owner, single.face_owner);
+  EXPECT_EQ(all.face_neighbour, single.face_neighbour);
+  EXPECT_EQ(all.cell_offsets, single.cell_offsets);
 }
 
 }  // namespace
