@@ -5,6 +5,7 @@
 #include <set>
 
 #include "classify/classify_primal.h"
+#include "classify/primal_features.h"
 #include "dual/primal_dual.h"
 #include "mesh/cell_soup.h"
 #include "mesh/model_facets.h"
@@ -39,14 +40,18 @@ Json primal_stats(const MixedPrimal& p) {
   return j;
 }
 
-MixedPrimal classify_mixed(const TetSoup& soup, std::vector<std::string>& warnings) {
+// build_primal, then again with the inferred model faces split at their
+// feature edges (classify/primal_features.h) when there are any.
+MixedPrimal classify_mixed(const TetSoup& soup, const ClassifyParams& params, std::vector<std::string>& warnings) {
   MixedPrimal p;
   p.cell_counts = mixed_cell_counts(soup);
   if (soup.tets.empty() && soup.other_cells.empty())
     throw InputError(soup.source, "",
                      "a surface mesh (" + describe_cell_counts(p.cell_counts) +
                          "): convert makes the dual of volume meshes only (`polydual info` checks and counts its cells)");
-  p.mesh = build_primal(cell_soup(soup), &warnings);
+  CellSoup cells = cell_soup(soup);
+  p.mesh = build_primal(cells, &warnings);
+  if (tag_inferred_model_faces(cells, p.mesh, params.feature_angle_deg) > 0) p.mesh = build_primal(std::move(cells));
   p.names = group_names(soup);
   return p;
 }
@@ -154,7 +159,7 @@ ModelRef mixed_vertex_class(const PrimalMesh& m, std::uint64_t in) {
 void run_mixed_stages(ConvertResult& r, const TetSoup& soup, const PipelineParams& params, const ConvertHooks& hooks) {
   ConvertReport& rep = r.report;
   r.mixed = run_stage(rep, hooks, "classify", [&](Json& stats) {
-    MixedPrimal p = classify_mixed(soup, r.warnings);
+    MixedPrimal p = classify_mixed(soup, params.classify, r.warnings);
     stats = primal_stats(p);
     return p;
   });
