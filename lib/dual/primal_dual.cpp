@@ -34,6 +34,28 @@ bool vertex_has_point(const PrimalMesh& m, bool keep, VertexId v) {
   return m.vertex_class(v).dim == 0 || (keep && m.vertex_class(v).dim <= 2);
 }
 
+// The model faces' central points, in owner_order (primal_caps.h): keep
+// mode takes triangle_inner_point for triangles, so the tiles are never
+// degenerate; a quadrangle's is its vertex mean either way.
+template <class Add>
+void add_face_points(const PrimalMesh& m, bool keep, MixedPoints& d, DualStats& st, Add&& add) {
+  d.face_pt.assign(m.num_faces(), PointId::invalid());
+  d.face_merge.assign(m.num_faces(), 0);
+  std::vector<std::pair<std::uint64_t, PrimalFaceId>> model_faces;
+  for (std::size_t f = 0; f < m.num_faces(); ++f)
+    if (m.face_class(PrimalFaceId(f)).dim == 2) model_faces.emplace_back(owner_order(m, PrimalFaceId(f)), PrimalFaceId(f));
+  std::sort(model_faces.begin(), model_faces.end());
+  for (const auto& [order, fid] : model_faces) {
+    const auto fv = m.face_vertices(fid);
+    const bool tri = fv.size() == 3;
+    const CentralPoint c = keep && tri ? triangle_inner_point(m.point(fv[0]), m.point(fv[1]), m.point(fv[2]))
+                                       : face_central_point(m, fid);
+    d.face_pt[fid.idx] = add(c.p, m.face_class(fid), 2, fid.idx);
+    d.face_merge[fid.idx] = char(tri && c.well_centred && !keep);
+    if (tri) ++(c.well_centred ? st.well_centred_triangles : st.clamped_triangles);
+  }
+}
+
 // STEP 1-4. Cell centres get PointId == PrimalCellId; then the model faces'
 // central points (keep mode: triangle_inner_point for triangles, so the
 // tiles are never degenerate; the vertex mean for quadrangles), the edge
@@ -78,21 +100,7 @@ MixedPoints make_points(const PrimalMesh& m, bool keep, PolyMesh& pm, DualStats&
     pm.point_origin.push_back(PointOrigin{dim, std::uint32_t(id)});
     return PointId(pm.points.size() - 1);
   };
-  d.face_pt.assign(m.num_faces(), PointId::invalid());
-  d.face_merge.assign(m.num_faces(), 0);
-  std::vector<std::pair<std::uint64_t, PrimalFaceId>> model_faces;
-  for (std::size_t f = 0; f < m.num_faces(); ++f)
-    if (m.face_class(PrimalFaceId(f)).dim == 2) model_faces.emplace_back(owner_order(m, PrimalFaceId(f)), PrimalFaceId(f));
-  std::sort(model_faces.begin(), model_faces.end());
-  for (const auto& [order, fid] : model_faces) {
-    const auto fv = m.face_vertices(fid);
-    const bool tri = fv.size() == 3;
-    const CentralPoint c = keep && tri ? triangle_inner_point(m.point(fv[0]), m.point(fv[1]), m.point(fv[2]))
-                                       : face_central_point(m, fid);
-    d.face_pt[fid.idx] = add(c.p, m.face_class(fid), 2, fid.idx);
-    d.face_merge[fid.idx] = char(tri && c.well_centred && !keep);
-    if (tri) ++(c.well_centred ? st.well_centred_triangles : st.clamped_triangles);
-  }
+  add_face_points(m, keep, d, st, add);
   d.edge_pt.assign(m.num_edges(), PointId::invalid());
   for (std::size_t e = 0; e < m.num_edges(); ++e)
     if (edge_has_point(m, keep, EdgeId(e))) {
