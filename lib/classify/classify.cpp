@@ -102,8 +102,8 @@ std::vector<char> check_indices(const TetSoup& s) {
     throw InputError(s.source, "",
                      "a " + std::string(s.other_cells.empty() ? "surface" : "mixed") + " mesh (" +
                          describe_cell_counts(mixed_cell_counts(s)) +
-                         "): its dual is not implemented yet; only tetrahedral meshes convert (`polydual info` "
-                         "checks and counts its cells)");
+                         "): classify() takes tetrahedra only; the pipeline builds such a mesh's primal with "
+                         "build_primal (classify/classify_primal.h)");
   if (!s.quads.empty())
     throw InputError(s.source, "", std::to_string(s.quads.size()) +
                                        " quadrangles on a tetrahedral mesh: no tetrahedron has a quadrangular face");

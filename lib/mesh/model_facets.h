@@ -13,6 +13,7 @@
 #include "core/handles.h"
 #include "core/vec3.h"
 #include "mesh/classified_tet_mesh.h"
+#include "mesh/primal_mesh.h"
 
 namespace polydual {
 
@@ -33,5 +34,14 @@ struct ModelFacets {
 
 // Built once from the classified primal.
 ModelFacets model_facets(const ClassifiedTetMesh& m);
+
+// The same for a volume PrimalMesh, src in its numbering (PrimalFaceId,
+// EdgeId: what the mixed dual's PointOrigin ids name). A quadrangle (a, b, c,
+// d) on a model face becomes the two triangles (a, b, c) and (a, c, d), both
+// with the quadrangle's face id as src (consecutive: triangles stay sorted by
+// src, and an origin lookup finds the first, which holds the quadrangle's
+// centre when it is planar: the mean lies on the diagonal a-c). A surface
+// primal (dim() == 2) has no model faces in this sense: empty triangles.
+ModelFacets model_facets(const PrimalMesh& m);
 
 }  // namespace polydual

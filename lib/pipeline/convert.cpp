@@ -15,47 +15,15 @@
 #include "io/output_guard.h"
 #include "io/format_registry.h"
 #include "io/read_tet_mesh.h"
+#include "pipeline/convert_mixed.h"
+#include "pipeline/run_stage.h"
 #include "split/split.h"
 
 namespace polydual {
 
 namespace {
-// The process's peak resident set so far, MB (Linux: ru_maxrss in KiB).
-double peak_rss_mb() {
-  rusage u{};
-  return getrusage(RUSAGE_SELF, &u) == 0 ? double(u.ru_maxrss) / 1024.0 : 0.0;
-}
-
-// Runs one stage, times it and records it; returns the stage's value. A
-// pending interrupt (Ctrl-C, SIGTERM) stops the pipeline between stages.
-template <class F>
-auto run_stage(ConvertReport& report, const ConvertHooks& hooks, const char* name, F&& stage) {
-  throw_if_interrupted();
-  const Stopwatch clock;
-  Json stats;
-  auto value = [&] {
-    try {
-      return stage(stats);
-    } catch (const std::bad_alloc&) {
-      throw OutOfMemory(name, peak_rss_mb());
-    }
-  }();
-  report.stages.push_back(StageRecord{name, clock.seconds(), std::move(stats), peak_rss_mb()});
-  if (hooks.stage_done) hooks.stage_done(report.stages.back());
-  return value;
-}
-
-
-// The dual's points are computed in floating point (means, normals); a mesh
-// whose scale the input check let through but whose arithmetic still over- or
-// underflowed is refused here, before the optimiser sees a NaN.
-void require_finite_points(const PolyMesh& pm, const std::string& source) {
-  for (std::size_t p = 0; p < pm.num_points(); ++p)
-    if (!is_finite(pm.points[p]))
-      throw InputError(source, "dual point " + std::to_string(p + 1),
-                       "not finite: the mesh's coordinates are out of the range double arithmetic handles "
-                       "(rescale the mesh)");
-}
+using pipeline_detail::require_finite_points;
+using pipeline_detail::run_stage;
 
 // Algorithm 1 as three stages (design §4): the draft (steps 1-7 and the
 // cleanup's hints), the cleanup (§2.8), the cells (step 8); cuts may be null.
@@ -151,8 +119,9 @@ std::vector<std::string> invalid_cell_items(const ConvertResult& r, std::size_t 
   for (std::size_t c = 0; c < r.check.verdicts.size() && items.size() < limit; ++c) {
     if (r.check.verdicts[c].valid) continue;
     const VertexId in = r.mesh.cell_primal[c];
-    const ModelRef cls = in.idx < internal.size() && internal[in.idx].valid() ? r.primal.vertex_class(internal[in.idx])
-                                                                            : ModelRef{};
+    const ModelRef cls = r.mixed ? pipeline_detail::mixed_vertex_class(r.mixed->mesh, in.idx)
+                         : in.idx < internal.size() && internal[in.idx].valid() ? r.primal.vertex_class(internal[in.idx])
+                                                                                : ModelRef{};
     items.push_back("cell " + std::to_string(c) + " (vertex " + std::to_string(in.idx) + ", class dim " +
                     std::to_string(cls.dim) + " tag " + std::to_string(cls.tag) + ")");
   }
@@ -165,12 +134,22 @@ std::vector<std::string> invalid_cell_items(const ConvertResult& r, std::size_t 
 void require_valid(const ConvertResult& r) {
   const std::vector<Defect> defects = r.check.validation.defects();
   if (r.check.invalid_cells == 0 && defects.empty()) return;
+  const std::string& source = r.mixed ? r.mixed->mesh.source() : r.primal.source();
   std::string what;
   if (!defects.empty()) what = "the dual is not sound: " + defects_sentence(defects) + (r.check.invalid_cells ? "; " : "");
-  if (r.check.invalid_cells == 0) throw InputError(r.primal.source(), "", what);
-  what += std::to_string(r.check.invalid_cells) + " cells remain invalid after the split:";
+  if (r.check.invalid_cells == 0) throw InputError(source, "", what);
+  what += std::to_string(r.check.invalid_cells) + (r.mixed ? " cells remain invalid (the split works on tets only):"
+                                                            : " cells remain invalid after the split:");
   for (const std::string& item : invalid_cell_items(r, r.check.invalid_cells)) what += " " + item + ";";
-  throw InputError(r.primal.source(), "", what);
+  throw InputError(source, "", what);
+}
+
+// What follows the last check on either path: the lost-volume warning, the
+// final count, --require-valid.
+void finish_pipeline(ConvertResult& r, const PipelineParams& params) {
+  if (params.dual.boundary == BoundaryMode::Caps) warn_lost_volume(r);
+  r.report.invalid_after = r.check.invalid_cells;
+  if (params.split.require_valid) require_valid(r);
 }
 
 // The stages from classify to the final check, appended to r.report. A soup
@@ -181,6 +160,12 @@ void run_pipeline(ConvertResult& r, const TetSoup& soup, const PipelineParams& p
   ConvertReport& rep = r.report;
   r.ignored = soup.ignored;
   r.warnings = soup.warnings;
+  if (is_mixed_or_surface(soup)) {  // design §14: the primal of any cell type, no split
+    pipeline_detail::run_mixed_stages(r, soup, params, hooks);
+    if (release) *release = TetSoup{};
+    finish_pipeline(r, params);
+    return;
+  }
   r.primal = run_stage(rep, hooks, "classify", [&](Json& stats) {
     ClassifyStats st;
     ClassifiedTetMesh m = classify(soup, params.classify, &st);
@@ -232,9 +217,7 @@ void run_pipeline(ConvertResult& r, const TetSoup& soup, const PipelineParams& p
     });
   }
   if (params.split.enabled) run_split_stage(r, st, facets, params, hooks);
-  if (params.dual.boundary == BoundaryMode::Caps) warn_lost_volume(r);
-  rep.invalid_after = r.check.invalid_cells;
-  if (params.split.require_valid) require_valid(r);
+  finish_pipeline(r, params);
 }
 
 }  // namespace
@@ -270,7 +253,8 @@ Json write_result(const ConvertResult& r, const std::string& path, PolyFormat fo
       from[c] = r.mesh.cell_origin[c].valid() ? std::int32_t(r.mesh.cell_origin[c].idx) : -1;
     fields.push_back(CellField{"split_from", std::move(from)});
   }
-  return write_poly_mesh(r.mesh, path, format, WriteContext{options, std::move(fields), model_names(r.primal.model())});
+  ModelNames names = r.mixed ? r.mixed->names : model_names(r.primal.model());
+  return write_poly_mesh(r.mesh, path, format, WriteContext{options, std::move(fields), std::move(names)});
 }
 
 ConvertResult convert_file(const std::string& in, const std::string& out, PolyFormat format,

@@ -17,7 +17,9 @@
 #include "core/json.h"
 #include "core/progress.h"
 #include "io/write_poly_mesh.h"
+#include "io/model_names.h"
 #include "mesh/classified_tet_mesh.h"
+#include "mesh/primal_mesh.h"
 #include "mesh/poly_mesh.h"
 #include "mesh/tet_soup.h"
 #include "pipeline/check.h"
@@ -41,11 +43,23 @@ struct ConvertReport {
   const StageRecord* stage(const std::string& name) const;
 };
 
+// The classified input of a mixed mesh (design §14): its PrimalMesh, the
+// number of cells of each type, and the names of the soup's physical groups
+// by region and model face tag (what the writers name).
+struct MixedPrimal {
+  PrimalMesh mesh;
+  std::array<std::size_t, kNumCellTypes> cell_counts{};
+  ModelNames names;
+};
+
 struct ConvertResult {
-  ClassifiedTetMesh primal;  // the classified input (the optimiser and writers read it)
+  // The classified input of a tet mesh (the optimiser and writers read it);
+  // empty when the input was mixed (then `mixed` holds it).
+  ClassifiedTetMesh primal;
   // The input's tets: primal's count unless the tet optimisation's flips
   // changed it (0: not set, primal's count).
   std::size_t input_tets = 0;
+  std::optional<MixedPrimal> mixed;
   PolyMesh mesh;             // the polyhedral dual, optimised when asked
   CheckResult check;         // validation and exact verdicts of `mesh` as returned
   ConvertReport report;
@@ -63,7 +77,11 @@ struct ConvertHooks {
   ProgressFn progress;                                 // within long stages (optimise)
 };
 
-// soup -> ConvertResult. Throws InputError for a bad mesh (naming soup.source
+// soup -> ConvertResult. A mixed soup (is_mixed_or_surface, with volume
+// cells) goes build_primal -> the mixed dual (dual/primal_dual.h) -> cleanup
+// -> cells -> check -> optimise -> check, without cuts or split (recorded as
+// a skipped "split" stage when the split is on); a surface mesh is an
+// InputError. Throws InputError for a bad mesh (naming soup.source
 // and the place) and UsageError for bad params; with params.split.require_valid
 // also when a cell stays invalid or the validation of the result fails
 // (r.check.validation.defects(): open cells, face errors, missing model

@@ -97,6 +97,8 @@ Json materials_json(const PolyMesh& pm, const ValidationReport& rep, const Class
     auto v = rep.material_volume.find(tag);
     o.set("volume", v == rep.material_volume.end() ? 0.0 : v->second);
     if (primal) o.set("primal_volume", primal_vol[tag]);
+    else if (const auto p = rep.primal_material_volume.find(tag); p != rep.primal_material_volume.end())
+      o.set("primal_volume", p->second);  // a mixed primal's (pipeline/convert_mixed.h)
     mats.push(o);
   }
   return mats;
@@ -271,14 +273,26 @@ Json convert_summary(const ConvertResult& r, const PipelineParams& params) {
     j.set("input", *read->stats.find("path"));
   }
   if (r.written.find("path")) j.set("output", r.written);
-  j.set("tets", r.input_tets ? r.input_tets : r.primal.num_tets());
-  j.set("vertices", r.primal.num_vertices());
+  if (r.mixed) {
+    // A mixed input (design §14): its cells per type; "tets" counts its tets.
+    j.set("mixed", true);
+    j.set("input_cells", describe_cell_counts(r.mixed->cell_counts));
+    Json by_type = Json::object();
+    for (int t = 0; t < kNumCellTypes; ++t)
+      if (r.mixed->cell_counts[t]) by_type.set(std::string(descriptor(CellType(t)).plural), r.mixed->cell_counts[t]);
+    j.set("cells_by_type", by_type);
+    j.set("tets", r.mixed->cell_counts[std::size_t(CellType::Tet)]);
+    j.set("vertices", r.mixed->mesh.num_vertices());
+  } else {
+    j.set("tets", r.input_tets ? r.input_tets : r.primal.num_tets());
+    j.set("vertices", r.primal.num_vertices());
+  }
   j.set("ignored", ignored_summary(r.ignored));
   Json warnings = Json::array();
   for (const std::string& w : r.warnings) warnings.push(w);
   j.set("warnings", warnings);
-  j.set("model", model_summary(r.primal));
-  Json mesh = mesh_summary(r.mesh, r.check, &r.primal, r.flatness ? &*r.flatness : nullptr);
+  if (!r.mixed) j.set("model", model_summary(r.primal));
+  Json mesh = mesh_summary(r.mesh, r.check, r.mixed ? nullptr : &r.primal, r.flatness ? &*r.flatness : nullptr);
   for (const char* k : {"cells", "faces", "points", "invalid_cells", "closed_cells", "slit_cells", "face_errors",
                         "negative_volume_cells", "materials", "missing_model_entities", "topology_ok",
                         "geometry_ok", "volume_mismatches", "defects", "invalid_by_class", "invalid_where", "face_flatness"})

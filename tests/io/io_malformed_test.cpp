@@ -101,7 +101,7 @@ TEST(IoMalformed, HexIsReadAndRefusedByTheTetPath) {
   ASSERT_EQ(soup.other_cells.size(), 1u);
   EXPECT_EQ(soup.other_cells[0].type, CellType::Hex);
   EXPECT_THAT(error_of([&] { classify(soup); }),
-              HasSubstr("t.msh: a mixed mesh (1 hexahedron): its dual is not implemented yet"));
+              HasSubstr("t.msh: a mixed mesh (1 hexahedron): classify() takes tetrahedra only"));
 }
 
 TEST(IoMalformed, NonIntegerTag) {

@@ -1,0 +1,32 @@
+// Sides of the vertices of a PrimalMesh (design §1, §14): the cells around v
+// connected through faces on no model face. One dual cell per side, as
+// dual/sides.h for tets (no vertex cuts: the mixed path has no split).
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "core/handles.h"
+#include "mesh/primal_mesh.h"
+
+namespace polydual {
+
+struct PrimalSides {
+  // corner_cell[star_off[v] + k]: the dual cell of v's side holding
+  // vertex_cells(v)[k].
+  std::vector<std::uint64_t> star_off;
+  std::vector<CellId> corner_cell;
+  std::size_t num_cells = 0;
+  // cell -> (primal vertex, PrimalMesh numbering; material)
+  std::vector<VertexId> cell_vertex;
+  std::vector<std::int32_t> cell_material;
+
+  // The dual cell of the side of v that holds cell c (c must have v).
+  CellId cell(const PrimalMesh& m, PrimalCellId c, VertexId v) const;
+};
+
+// Cells are numbered by primal vertex, then by the first cell (in star order,
+// increasing cell id) of each side: deterministic, and on a tet mesh the
+// numbering compute_sides() gives for the same tet order.
+PrimalSides compute_primal_sides(const PrimalMesh& m);
+
+}  // namespace polydual

@@ -1,0 +1,195 @@
+#include "pipeline/convert_mixed.h"
+
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "classify/classify_primal.h"
+#include "classify/primal_features.h"
+#include "dual/primal_dual.h"
+#include "mesh/cell_soup.h"
+#include "mesh/model_facets.h"
+#include "pipeline/run_stage.h"
+#include "predicates/predicates.h"
+
+namespace polydual::pipeline_detail {
+
+namespace {
+
+// The names of the soup's physical groups by region and model face tag: the
+// first named group (in (dim, tag) order) listing the tag, as classify()
+// names its model entities.
+ModelNames group_names(const TetSoup& soup) {
+  ModelNames n;
+  for (const NamedGroup& g : soup.groups) {
+    if (g.name.empty() || (g.dim != 3 && g.dim != 2)) continue;
+    for (std::int32_t tag : g.entities) (g.dim == 3 ? n.regions : n.faces).emplace(tag, g.name);
+  }
+  return n;
+}
+
+Json primal_stats(const MixedPrimal& p) {
+  Json j = Json::object();
+  Json cells = Json::object();
+  for (int t = 0; t < kNumCellTypes; ++t)
+    if (p.cell_counts[t]) cells.set(std::string(descriptor(CellType(t)).plural), p.cell_counts[t]);
+  j.set("cells", cells);
+  j.set("vertices", p.mesh.num_vertices());
+  j.set("faces", p.mesh.num_faces());
+  j.set("edges", p.mesh.num_edges());
+  return j;
+}
+
+// build_primal, then again with the inferred model faces split at their
+// feature edges (classify/primal_features.h) when there are any.
+MixedPrimal classify_mixed(const TetSoup& soup, const ClassifyParams& params, std::vector<std::string>& warnings) {
+  MixedPrimal p;
+  p.cell_counts = mixed_cell_counts(soup);
+  if (soup.tets.empty() && soup.other_cells.empty())
+    throw InputError(soup.source, "",
+                     "a surface mesh (" + describe_cell_counts(p.cell_counts) +
+                         "): convert makes the dual of volume meshes only (`polydual info` checks and counts its cells)");
+  CellSoup cells = cell_soup(soup);
+  p.mesh = build_primal(cells, &warnings);
+  if (tag_inferred_model_faces(cells, p.mesh, params.feature_angle_deg) > 0) p.mesh = build_primal(std::move(cells));
+  p.names = group_names(soup);
+  return p;
+}
+
+PolyMesh mixed_dual_stages(ConvertResult& r, const PipelineParams& params, const ConvertHooks& hooks) {
+  const PrimalMesh& m = r.mixed->mesh;
+  DualStats dual_stats;
+  DualDraft draft = run_stage(r.report, hooks, "dual", [&](Json& stats) {
+    DualDraft d = build_primal_dual_draft(m, params.dual, &dual_stats);
+    stats = dual_stats.to_json();
+    return d;
+  });
+  run_stage(r.report, hooks, "cleanup", [&](Json& stats) {
+    stats = cleanup_dual(draft).to_json();
+    return 0;
+  });
+  return run_stage(r.report, hooks, "cells", [&](Json& stats) {
+    PolyMesh pm = assemble_cells(std::move(draft));
+    require_finite_points(pm, m.source());
+    stats = Json::object();
+    stats.set("cells", pm.num_cells());
+    return pm;
+  });
+}
+
+CheckResult check_mixed(const ConvertResult& r, bool with_validation) {
+  CheckResult c = check_mesh(r.mesh, nullptr, with_validation);
+  if (with_validation) check_mixed_volumes(r.mixed->mesh, c.validation);
+  return c;
+}
+
+// Signed volume of cell c: fans of tets from its vertex mean over its faces'
+// fans from their vertex means (double; outward loops give positive tets).
+double primal_cell_volume(const PrimalMesh& m, PrimalCellId c) {
+  const auto cv = m.cell_vertices(c);
+  Point3 g{0, 0, 0};
+  for (VertexId v : cv) g = g + m.point(v);
+  g = g * (1.0 / double(cv.size()));
+  double vol = 0;
+  const CellDescriptor& d = m.cell_descriptor(c);
+  for (int i = 0; i < d.num_faces; ++i) {
+    const int n = d.face_size[i];
+    Point3 fc{0, 0, 0};
+    for (int k = 0; k < n; ++k) fc = fc + m.point(cv[d.faces[i][k]]);
+    fc = fc * (1.0 / double(n));
+    for (int k = 0; k < n; ++k) {
+      const Point3 &a = m.point(cv[d.faces[i][k]]), &b = m.point(cv[d.faces[i][(k + 1) % n]]);
+      vol += dot(b - a, cross(fc - a, g - a));
+    }
+  }
+  return -vol / 6.0;
+}
+
+// Regions bounded (external or interface) by a model face that is not planar.
+std::set<std::int32_t> regions_with_curved_faces(const PrimalMesh& m) {
+  std::map<std::int32_t, PrimalFaceId> first;
+  std::set<std::int32_t> curved_tags, regions;
+  for (std::size_t f = 0; f < m.num_faces(); ++f) {
+    const PrimalFaceId fid(f);
+    if (m.face_class(fid).dim != 2) continue;
+    const auto [it, fresh] = first.emplace(m.face_class(fid).tag, fid);
+    const auto base = m.face_vertices(it->second);
+    for (VertexId v : m.face_vertices(fid))
+      if (orient3d(m.point(base[0]), m.point(base[1]), m.point(base[2]), m.point(v)) != Sign::Zero)
+        curved_tags.insert(m.face_class(fid).tag);
+  }
+  for (std::size_t f = 0; f < m.num_faces(); ++f) {
+    const PrimalFaceId fid(f);
+    if (m.face_class(fid).dim != 2 || !curved_tags.count(m.face_class(fid).tag)) continue;
+    const PrimalCellId c0 = m.face_cell(fid, 0), c1 = m.face_cell(fid, 1);
+    if (c1.valid() && m.cell_class(c0).tag == m.cell_class(c1).tag) continue;  // a fracture: cancels inside
+    regions.insert(m.cell_class(c0).tag);
+    if (c1.valid()) regions.insert(m.cell_class(c1).tag);
+  }
+  return regions;
+}
+
+}  // namespace
+
+void check_mixed_volumes(const PrimalMesh& m, ValidationReport& r) {
+  for (std::size_t c = 0; c < m.num_cells(); ++c)
+    r.primal_material_volume[m.cell_class(PrimalCellId(c)).tag] += primal_cell_volume(m, PrimalCellId(c));
+  const std::set<std::int32_t> curved = regions_with_curved_faces(m);
+  std::set<std::int32_t> materials;
+  for (const auto& [tag, v] : r.primal_material_volume) materials.insert(tag);
+  for (const auto& [tag, v] : r.material_volume) materials.insert(tag);
+  for (std::int32_t tag : materials) {
+    if (curved.count(tag)) continue;
+    r.volume_checked_materials.push_back(tag);
+    const auto d = r.material_volume.find(tag), p = r.primal_material_volume.find(tag);
+    const double dual = d == r.material_volume.end() ? 0.0 : d->second;
+    const double prim = p == r.primal_material_volume.end() ? 0.0 : p->second;
+    const double scale = std::max(std::fabs(dual), std::fabs(prim));
+    const double rel = scale > 0 ? std::fabs(dual - prim) / scale : 0.0;
+    if (!(rel <= r.volume_rel_tol)) r.volume_mismatches.push_back({tag, dual, prim, rel});
+  }
+}
+
+ModelRef mixed_vertex_class(const PrimalMesh& m, std::uint64_t in) {
+  for (std::size_t v = 0; v < m.num_vertices(); ++v)
+    if (m.input_vertex(VertexId(v)) == in) return m.vertex_class(VertexId(v));
+  return ModelRef{};
+}
+
+void run_mixed_stages(ConvertResult& r, const TetSoup& soup, const PipelineParams& params, const ConvertHooks& hooks) {
+  ConvertReport& rep = r.report;
+  r.mixed = run_stage(rep, hooks, "classify", [&](Json& stats) {
+    MixedPrimal p = classify_mixed(soup, params.classify, r.warnings);
+    stats = primal_stats(p);
+    return p;
+  });
+  if (params.tetopt.enabled) r.warnings.push_back(soup.source + ": optimize_tets works on tet meshes only: skipped");
+  r.mesh = mixed_dual_stages(r, params, hooks);
+  const bool optimise = params.optim.method != OptimParams::Method::None;
+  r.check = run_stage(rep, hooks, "check", [&](Json& stats) {
+    CheckResult c = check_mixed(r, !optimise);
+    stats = c.to_json();
+    return c;
+  });
+  rep.invalid_before = r.check.invalid_cells;
+  if (optimise) {
+    run_stage(rep, hooks, "optimize", [&](Json& stats) {
+      const ModelFacets facets = model_facets(r.mixed->mesh);
+      stats = optimize(r.mesh, &facets, params.optim, hooks.progress, {}, r.check.verdicts).to_json();
+      return 0;
+    });
+    r.check = run_stage(rep, hooks, "check_after", [&](Json& stats) {
+      CheckResult c = check_mixed(r, true);
+      stats = c.to_json();
+      return c;
+    });
+  }
+  if (params.split.enabled)
+    run_stage(rep, hooks, "split", [&](Json& stats) {
+      stats = Json::object();
+      stats.set("skipped", "the split (lib/split) works on tet meshes only");
+      return 0;
+    });
+}
+
+}  // namespace polydual::pipeline_detail
