@@ -47,7 +47,10 @@ struct Builder {
     const std::vector<int> lo = row_points(r, t), up = row_points(r, t + 2);
     std::size_t i = 0, k = 0;
     while (i + 1 < lo.size() || k + 1 < up.size()) {
-      const bool advance_lo = k + 1 == up.size() || (i + 1 < lo.size() && lo[i + 1] <= up[k + 1]);
+      // The row whose next point comes first advances; at the rows' common
+      // end, the one that is behind (else the triangle there is obtuse).
+      const bool advance_lo = k + 1 == up.size() || (i + 1 < lo.size() && (lo[i + 1] < up[k + 1] ||
+                                                                            (lo[i + 1] == up[k + 1] && lo[i] <= up[k])));
       if (advance_lo) {
         soup.triangles.push_back({{point(r, lo[i], t), point(r, lo[i + 1], t), point(r, up[k], t + 2)}, r.tag});
         ++i;
