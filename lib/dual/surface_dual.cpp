@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/union_find.h"
 #include "dual/primal_central_points.h"
 #include "predicates/predicates.h"
 
@@ -129,7 +130,7 @@ namespace {
 struct DualPoints {
   const PrimalMesh& m;
   PolySurface& out;
-  std::vector<std::uint32_t> edge_point, vertex_point;
+  std::vector<std::uint32_t> cell_point, edge_point, vertex_point;
   std::vector<Vec3> normal;
 
   std::uint32_t vertex(VertexId v) {
@@ -139,7 +140,15 @@ struct DualPoints {
   }
 };
 
+// A corner on the point of the previous one (cells sharing their centre)
+// replaces it: the fan triangle between them has no area, the new corner's
+// is the real one.
 void add_corner(SurfacePolygonDraft& d, std::uint32_t p, Vec3 n, bool tested) {
+  if (!d.points.empty() && d.points.back() == p) {
+    d.fan_normal.back() = n;
+    d.tested.back() = tested ? 1 : 0;
+    return;
+  }
   d.points.push_back(p);
   d.fan_normal.push_back(n);
   d.tested.push_back(tested ? 1 : 0);
@@ -153,9 +162,13 @@ SurfacePolygonDraft side_polygon(DualPoints& dp, VertexId v, const Side& s) {
   d.surface = m.cell_class(s.cells.front()).tag;
   auto n_of = [&](PrimalCellId c) { return dp.normal[c.idx]; };
   const std::size_t k = s.cells.size();
+  const auto pt = [&](PrimalCellId c) { return dp.cell_point[c.idx]; };
   if (s.closed) {
     for (std::size_t i = 0; i < k; ++i)
-      add_corner(d, s.cells[i].idx, unit(n_of(s.cells[i]) + n_of(s.cells[(i + 1) % k])), true);
+      add_corner(d, pt(s.cells[i]), unit(n_of(s.cells[i]) + n_of(s.cells[(i + 1) % k])), true);
+    while (d.points.size() > 1 && d.points.back() == d.points.front()) {
+      d.points.pop_back(), d.fan_normal.pop_back(), d.tested.pop_back();
+    }
     return d;
   }
   const bool one_edge = s.first == s.last;
@@ -163,12 +176,41 @@ SurfacePolygonDraft side_polygon(DualPoints& dp, VertexId v, const Side& s) {
   if (with_v) add_corner(d, dp.vertex(v), n_of(s.cells.front()), false);
   add_corner(d, dp.edge_point[s.first.idx], n_of(s.cells.front()), true);
   for (std::size_t i = 0; i + 1 < k; ++i)
-    add_corner(d, s.cells[i].idx, unit(n_of(s.cells[i]) + n_of(s.cells[i + 1])), true);
-  add_corner(d, s.cells.back().idx, n_of(s.cells.back()), true);
+    add_corner(d, pt(s.cells[i]), unit(n_of(s.cells[i]) + n_of(s.cells[i + 1])), true);
+  add_corner(d, pt(s.cells.back()), n_of(s.cells.back()), true);
   // The last midpoint closes to v, or along the chord through v (straight
   // boundary: v lies on it, no area, not tested), or is the first one.
   if (!one_edge) add_corner(d, dp.edge_point[s.last.idx], n_of(s.cells.back()), false);
   return d;
+}
+
+// The cells' central points. Cells joined by an edge on no curve whose
+// central points are equal (cocircular triangles: the two halves of a
+// rectangle, a structured mesh) share one dual point, as the 3D cleanup
+// collapses zero-length dual edges (paper §2.8): a dual edge of length zero
+// would make its fan triangle flat. Equality of the rounded coordinates is an
+// exact comparison; the points stay where the rule put them.
+void add_cell_points(const PrimalMesh& m, DualPoints& dp) {
+  std::vector<Point3> centre(m.num_cells());
+  dp.normal.resize(m.num_cells());
+  for (std::size_t c = 0; c < m.num_cells(); ++c) {
+    centre[c] = cell_central_point(m, PrimalCellId(c)).p;
+    dp.normal[c] = surface_cell_normal(m, PrimalCellId(c));
+  }
+  UnionFind same(m.num_cells());
+  for (std::size_t e = 0; e < m.num_edges(); ++e) {
+    if (on_curve(m, EdgeId(e))) continue;
+    const auto cs = m.edge_cells(EdgeId(e));
+    if (centre[cs[0].idx] == centre[cs[1].idx]) same.unite(cs[0].idx, cs[1].idx);
+  }
+  dp.cell_point.assign(m.num_cells(), UINT32_MAX);
+  for (std::size_t c = 0; c < m.num_cells(); ++c) {
+    const std::uint32_t root = same.find(c);  // the smallest cell of its class: seen first
+    if (dp.cell_point[root] == UINT32_MAX)
+      dp.cell_point[root] = dp.out.add_point(centre[c], m.cell_class(PrimalCellId(c)),
+                                             {SurfacePointOrigin::Kind::CellCentre, std::uint32_t(c)});
+    dp.cell_point[c] = dp.cell_point[root];
+  }
 }
 
 }  // namespace
@@ -176,14 +218,9 @@ SurfacePolygonDraft side_polygon(DualPoints& dp, VertexId v, const Side& s) {
 PolySurface build_surface_dual(const PrimalMesh& m) {
   if (m.dim() != 2) throw std::logic_error("build_surface_dual needs a surface mesh (PrimalMesh::dim() == 2)");
   PolySurface out;
-  DualPoints dp{m, out, std::vector<std::uint32_t>(m.num_edges(), UINT32_MAX),
+  DualPoints dp{m, out, {}, std::vector<std::uint32_t>(m.num_edges(), UINT32_MAX),
                 std::vector<std::uint32_t>(m.num_vertices(), UINT32_MAX), {}};
-  dp.normal.resize(m.num_cells());
-  for (std::size_t c = 0; c < m.num_cells(); ++c) {
-    const PrimalCellId id(c);
-    dp.normal[c] = surface_cell_normal(m, id);
-    out.add_point(cell_central_point(m, id).p, m.cell_class(id), {SurfacePointOrigin::Kind::CellCentre, id.idx});
-  }
+  add_cell_points(m, dp);
   for (std::size_t e = 0; e < m.num_edges(); ++e) {
     if (!on_curve(m, EdgeId(e))) continue;
     const auto [a, b] = m.edge(EdgeId(e));

@@ -17,6 +17,8 @@
 // one point shared by every polygon that uses it, so neighbouring polygons
 // share each dual edge, and polygons on both sides of a crossing line share
 // its midpoints and points.
+// Cells joined by an edge on no curve whose central points are equal
+// (cocircular triangles) share one dual point: no dual edge of length zero.
 // Deterministic numbering: points are the cells' central points (cell order),
 // then the midpoints of curve edges (edge order), then the primal vertices
 // used (vertex order); polygons in vertex order, a vertex's sides in order of

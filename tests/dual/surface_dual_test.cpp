@@ -312,6 +312,30 @@ TEST(SurfaceDual, QuadGridIsDualToItsShiftedGrid) {
     if (m.vertex_class(VertexId(std::size_t(s.primal_vertex(i)))).dim == 2) EXPECT_EQ(s.polygon(i).size(), 4u);
 }
 
+TEST(SurfaceDual, CocircularTrianglesShareTheirCentre) {
+  // Squares split along one diagonal: the two right triangles of a square
+  // have one circumcentre; it becomes one dual point, so the dual is the
+  // shifted square grid, valid, with no dual edge of length zero.
+  TetSoup quads = quad_grid(4, 4, false), soup;
+  soup.source = "<right triangles>";
+  soup.points = quads.points;
+  for (const TaggedQuad& q : quads.quads) {
+    soup.triangles.push_back({{q.v[0], q.v[1], q.v[2]}, 1});
+    soup.triangles.push_back({{q.v[0], q.v[2], q.v[3]}, 1});
+  }
+  const PrimalMesh m = primal_of(soup);
+  const PolySurface s = build_surface_dual(m);
+  std::size_t centres = 0;
+  for (std::size_t q = 0; q < s.num_points(); ++q) centres += s.point_origin(q).kind == SurfacePointOrigin::Kind::CellCentre;
+  EXPECT_EQ(centres, quads.quads.size());
+  expect_all_valid(s);
+  expect_conformal(s, false);
+  for (const auto& [e, uses] : dual_edges(s)) EXPECT_NE(s.point(e.first), s.point(e.second));
+  EXPECT_LE(surface_area_identity(m, s).max_rel_error, 1e-12);
+  for (std::size_t i = 0; i < s.num_polygons(); ++i)
+    if (m.vertex_class(VertexId(std::size_t(s.primal_vertex(i)))).dim == 2) EXPECT_EQ(s.polygon(i).size(), 4u);
+}
+
 TEST(SurfaceDual, MixedTriangleQuadSurface) {
   const PrimalMesh m = primal_of(quad_grid(4, 3, true));
   ASSERT_GT(m.num_cells(), 24u);
