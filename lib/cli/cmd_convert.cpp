@@ -40,18 +40,23 @@ namespace {
 // The dual of a surface mesh (pipeline/convert_surface.h): polygons.
 int convert_surface_mesh(const Settings& s, TetSoup soup) {
   ProgressPrinter progress(s.quiet);
-  const SurfaceConvertResult r = convert_surface_file(std::move(soup), s.positional[0], s.out, s.format, s.write,
-                                                      progress.hooks());
+  // --optimize none or untangle: the dual points stay where Algorithm 1 puts them.
+  SurfaceSmoothParams smooth;
+  const auto method = s.params.optim.method;
+  if (method == OptimParams::Method::None || method == OptimParams::Method::Untangle) smooth.sweeps = 0;
+  const SurfaceConvertResult r = convert_surface_file(std::move(soup), s.positional[0], s.out, s.format, smooth,
+                                                      s.write, progress.hooks());
   progress.end_line();
   print_warnings(r.warnings, s.quiet);
   const Json summary = surface_summary(r);
   if (s.json) print_json(summary);
   else if (!s.quiet)
     std::printf("%s: surface dual of %zu cells: %zu polygons, %zu points, %zu invalid; area identity on %zu planar "
-                "surface(s): max relative error %.3g (all %zu surfaces: %.3g); %.3f s\n",
+                "surface(s): max relative error %.3g (all %zu surfaces: %.3g); smoothing moved %zu points, min fan "
+                "quality %.3g -> %.3g; %.3f s\n",
                 s.out.c_str(), r.primal.num_cells(), r.dual.num_polygons(), r.dual.num_points(), r.verdicts.invalid,
                 r.areas.planar, r.areas.max_rel_error, r.areas.surfaces.size(), r.areas.max_rel_error_all,
-                r.report.seconds);
+                r.smooth.moved, r.smooth.min_quality_before, r.smooth.min_quality_after, r.report.seconds);
   if (r.verdicts.invalid > 0) {
     Defect d{"invalid_polygons", "polygons not star-shaped about their primal vertex", r.verdicts.invalid, {}};
     for (std::size_t i = 0; i < r.dual.num_polygons() && d.items.size() < 10; ++i)

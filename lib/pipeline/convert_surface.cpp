@@ -54,7 +54,8 @@ bool is_surface_soup(const TetSoup& soup) {
   return soup.tets.empty() && soup.other_cells.empty() && !(soup.triangles.empty() && soup.quads.empty());
 }
 
-SurfaceConvertResult convert_surface(const TetSoup& soup, const ConvertHooks& hooks) {
+SurfaceConvertResult convert_surface(const TetSoup& soup, const SurfaceSmoothParams& smooth,
+                                     const ConvertHooks& hooks) {
   SurfaceConvertResult r;
   r.primal = stage(r.report, hooks, "primal", [&](Json& st) {
     PrimalMesh m = build_primal(cell_soup(soup), &r.warnings);
@@ -68,6 +69,14 @@ SurfaceConvertResult convert_surface(const TetSoup& soup, const ConvertHooks& ho
     st.set("polygons", d.num_polygons());
     st.set("points", d.num_points());
     return d;
+  });
+  r.smooth = stage(r.report, hooks, "smooth", [&](Json& st) {
+    SurfaceSmoothReport sm = smooth_surface(r.dual, r.primal, smooth);
+    st.set("sweeps", sm.sweeps);
+    st.set("moved", sm.moved);
+    st.set("min_quality_before", sm.min_quality_before);
+    st.set("min_quality_after", sm.min_quality_after);
+    return sm;
   });
   r.verdicts = stage(r.report, hooks, "check", [&](Json& st) {
     SurfaceVerdicts v = surface_verdicts(r.dual);
@@ -91,12 +100,12 @@ Json write_surface_result(const SurfaceConvertResult& r, const std::string& path
 }
 
 SurfaceConvertResult convert_surface_file(TetSoup soup, const std::string& in, const std::string& out,
-                                          std::string_view format, const PolyWriteOptions& options,
-                                          const ConvertHooks& hooks) {
+                                          std::string_view format, const SurfaceSmoothParams& smooth,
+                                          const PolyWriteOptions& options, const ConvertHooks& hooks) {
   const SurfaceWriter& writer = surface_writer_for(format, out);
   const std::string inputs[] = {in};
   check_output_target(inputs, out, OutputKind::File, options.foam.force, std::string(writer.extension()));
-  SurfaceConvertResult r = convert_surface(soup, hooks);
+  SurfaceConvertResult r = convert_surface(soup, smooth, hooks);
   r.written = stage(r.report, hooks, "write", [&](Json& st) {
     Json w = write_surface_result(r, out, writer, options);
     st = w;
@@ -119,6 +128,12 @@ Json surface_summary(const SurfaceConvertResult& r) {
   dual.set("polygons", r.dual.num_polygons());
   dual.set("points", r.dual.num_points());
   j.set("dual", std::move(dual));
+  Json sm = Json::object();
+  sm.set("sweeps", r.smooth.sweeps);
+  sm.set("moved", r.smooth.moved);
+  sm.set("min_quality_before", r.smooth.min_quality_before);
+  sm.set("min_quality_after", r.smooth.min_quality_after);
+  j.set("smooth", std::move(sm));
   j.set("invalid", r.verdicts.invalid);
   j.set("fan_triangles", r.verdicts.fan_triangles);
   j.set("area", area_json(r.areas));

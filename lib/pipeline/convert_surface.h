@@ -1,9 +1,9 @@
 // The pipeline of a surface mesh or surface network (design §15):
-//   read -> build_primal (exact orientation of nothing, classification,
-//   degenerate cells refused) -> surface dual (dual/surface_dual.h) -> check
-//   (exact fan test and the area identity, quality/surface_verdict.h) -> write
-//   (a SurfaceWriter of io/format_registry.h).
-// No smoothing stage yet: the dual points stay where Algorithm 1 puts them.
+//   read -> build_primal (classification; degenerate cells refused, exactly)
+//   -> surface dual (dual/surface_dual.h) -> smooth (optim/surface_smooth.h;
+//   sweeps 0: none) -> check (exact fan test and the area identity,
+//   quality/surface_verdict.h) -> write (a SurfaceWriter of
+//   io/format_registry.h).
 // Nothing here prints or exits.
 #pragma once
 #include <string>
@@ -16,6 +16,7 @@
 #include "mesh/poly_surface.h"
 #include "mesh/primal_mesh.h"
 #include "mesh/tet_soup.h"
+#include "optim/surface_smooth.h"
 #include "pipeline/convert.h"
 #include "quality/surface_verdict.h"
 
@@ -26,7 +27,8 @@ struct SurfaceConvertResult {
   PolySurface dual;
   SurfaceVerdicts verdicts;
   SurfaceAreaIdentity areas;
-  ConvertReport report;  // stages "primal", "dual", "check", "write" (file entry)
+  SurfaceSmoothReport smooth;
+  ConvertReport report;  // stages "primal", "dual", "smooth", "check", "write" (file entry)
   Json written;          // the writer's record (file entry)
   std::vector<std::string> warnings;
 };
@@ -36,7 +38,8 @@ bool is_surface_soup(const TetSoup& soup);
 
 // soup -> primal -> dual -> check. InputError naming the source and the
 // place for a bad mesh (degenerate cell, inconsistent orientation).
-SurfaceConvertResult convert_surface(const TetSoup& soup, const ConvertHooks& hooks = {});
+SurfaceConvertResult convert_surface(const TetSoup& soup, const SurfaceSmoothParams& smooth = {},
+                                     const ConvertHooks& hooks = {});
 
 // The cell arrays written with the dual: "valid" (Int32, 1 or 0).
 Json write_surface_result(const SurfaceConvertResult& r, const std::string& path, const SurfaceWriter& writer,
@@ -48,8 +51,8 @@ Json write_surface_result(const SurfaceConvertResult& r, const std::string& path
 // written atomically. `format`: the `--format` value ("" = by extension);
 // a volume format ("foam") is a UsageError before any work.
 SurfaceConvertResult convert_surface_file(TetSoup soup, const std::string& in, const std::string& out,
-                                          std::string_view format, const PolyWriteOptions& options = {},
-                                          const ConvertHooks& hooks = {});
+                                          std::string_view format, const SurfaceSmoothParams& smooth = {},
+                                          const PolyWriteOptions& options = {}, const ConvertHooks& hooks = {});
 
 // The machine-readable summary: counts, invalid polygons, the area identity
 // and the stages.

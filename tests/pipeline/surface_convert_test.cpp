@@ -127,8 +127,10 @@ TEST(SurfaceConvert, LatticeNetworkSummary) {
   EXPECT_LE(r.areas.max_rel_error, 1e-12);
   const Json j = surface_summary(r);
   EXPECT_THAT(j.dump(), HasSubstr("\"polygons\": " + std::to_string(r.dual.num_polygons())));
-  ASSERT_EQ(r.report.stages.size(), 3u);
+  ASSERT_EQ(r.report.stages.size(), 4u);
   EXPECT_EQ(r.report.stages[1].name, "dual");
+  EXPECT_EQ(r.report.stages[2].name, "smooth");
+  EXPECT_GE(r.smooth.min_quality_after, r.smooth.min_quality_before);
 }
 
 TEST(SurfaceConvert, DegenerateTriangleIsNamedAndNothingWritten) {
