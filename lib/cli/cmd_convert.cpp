@@ -20,7 +20,10 @@ const CommandSpec kConvert{
     "Builds the polyhedral dual of a classified tet mesh (paper Algorithm 1), checks\n"
     "every cell with the exact star-shaped test, untangles and smooths it, and writes\n"
     "VTU (VTK_POLYHEDRON) or an OpenFOAM case directory (OUT/constant/polyMesh).\n"
-    "IN is read by its extension: " + mesh_extensions_text() + ".",
+    "IN is read by its extension: " + mesh_extensions_text() + ".\n"
+    "A Gmsh mesh of surfaces alone (a fracture network) gives its surface dual:\n"
+    "one polygon per side of each vertex, checked exactly, smoothed within the\n"
+    "surfaces (not with --optimize none), written as VTU of VTK_POLYGON cells.",
     1, 1,
     {"-o", "--format", "--force", "--vtu-encoding", "--zlib", "--feature-angle", "--strong-angle", "--boundary", "--no-cleanup", "--collapse-tol", "--optimize", "--planarity", "--optimize-tets", "--tet-sweeps", "--tet-flips", "--tet-flip-rounds", "--no-split", "--split-rounds", "--no-coarsen", "--require-valid", "--metric",
      "--derivatives", "--relaxation", "--tol", "--polish-sweeps", "--polish-share", "--worst-rounds", "--settle-move", "--max-iter", "--threads", "--json", "--quiet"}};
