@@ -25,8 +25,12 @@ Corner corner_at(const PrimalMesh& m, PrimalCellId c, VertexId v) {
 
 bool on_curve(const PrimalMesh& m, EdgeId e) { return m.edge_class(e).dim != 2; }
 
+// "triangle 12": the k-th cell of its type (1-based), as cell_place names
+// the soup's cells (errors only: it counts).
 std::string cell_name(const PrimalMesh& m, PrimalCellId c) {
-  return std::string(m.cell_descriptor(c).name) + " " + std::to_string(m.input_cell(c) + 1);
+  std::size_t k = 1;
+  for (std::size_t i = 0; i < c.idx; ++i) k += m.cell_type(PrimalCellId(i)) == m.cell_type(c);
+  return std::string(m.cell_descriptor(c).name) + " " + std::to_string(k);
 }
 
 // The other cell of an edge on no model curve (it has exactly two). `c2`
