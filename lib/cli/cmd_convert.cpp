@@ -44,10 +44,11 @@ namespace {
 int convert_surface_mesh(const Settings& s, TetSoup soup) {
   ProgressPrinter progress(s.quiet);
   // --optimize none or untangle: the dual points stay where Algorithm 1 puts them.
-  SurfaceSmoothParams smooth;
+  SurfaceConvertParams params;
   const auto method = s.params.optim.method;
-  if (method == OptimParams::Method::None || method == OptimParams::Method::Untangle) smooth.sweeps = 0;
-  const SurfaceConvertResult r = convert_surface_file(std::move(soup), s.positional[0], s.out, s.format, smooth,
+  if (method == OptimParams::Method::None || method == OptimParams::Method::Untangle) params.smooth.sweeps = 0;
+  params.require_valid = s.params.split.require_valid;
+  const SurfaceConvertResult r = convert_surface_file(std::move(soup), s.positional[0], s.out, s.format, params,
                                                       s.write, progress.hooks());
   progress.end_line();
   print_warnings(r.warnings, s.quiet);
@@ -61,12 +62,10 @@ int convert_surface_mesh(const Settings& s, TetSoup soup) {
                 r.areas.planar, r.areas.max_rel_error, r.areas.surfaces.size(), r.areas.max_rel_error_all,
                 r.smooth.moved, r.smooth.min_quality_before, r.smooth.min_quality_after, r.report.seconds);
   if (r.verdicts.invalid > 0) {
-    Defect d{"invalid_polygons", "polygons not star-shaped about their primal vertex", r.verdicts.invalid, {}};
-    for (std::size_t i = 0; i < r.dual.num_polygons() && d.items.size() < 10; ++i)
-      if (!r.verdicts.valid[i])
-        d.items.push_back("polygon " + std::to_string(i) + " (vertex " + std::to_string(r.dual.primal_vertex(i) + 1) +
-                          ", surface " + std::to_string(r.dual.surface(i)) + ")");
-    print_defects("convert", "warning", s.out + " written with polygons that are not star-shaped:", {d});
+    const Defect d{"invalid_polygons", "polygons not star-shaped about their primal vertex", r.verdicts.invalid,
+                   invalid_polygon_items(r, 10)};
+    print_defects("convert", "warning", s.out + " written with polygons that are not star-shaped (--require-valid "
+                                        "refuses it):", {d});
   }
   return 0;
 }

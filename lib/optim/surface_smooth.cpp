@@ -52,18 +52,26 @@ PointStar point_stars(const PolySurface& s) {
   return st;
 }
 
-// The smallest quality of the tested fan triangles at point p of the
-// polygons, or -infinity when one of the polygons is invalid (EXACT test).
-double worst(const PolySurface& s, const std::vector<std::uint32_t>& polygons, std::uint32_t p) {
-  double q = std::numeric_limits<double>::infinity();
+// What a move is judged by: the polygons at the point that the EXACT fan
+// test finds invalid, then the smallest quality of the tested fan triangles
+// at the point (floating point). A move is kept when it lowers the first, or
+// keeps it and raises the second: it never makes a valid polygon invalid.
+struct Score {
+  std::size_t invalid = 0;
+  double quality = std::numeric_limits<double>::infinity();
+  bool better_than(const Score& o) const { return invalid < o.invalid || (invalid == o.invalid && quality > o.quality); }
+};
+Score score(const PolySurface& s, const std::vector<std::uint32_t>& polygons, std::uint32_t p) {
+  Score sc;
   for (std::uint32_t i : polygons) {
-    if (!surface_polygon_valid(s, i)) return -std::numeric_limits<double>::infinity();
+    sc.invalid += !surface_polygon_valid(s, i);
     const auto pts = s.polygon(i);
     const auto tested = s.fan_tested(i);
     for (std::size_t k = 0; k < pts.size(); ++k)
-      if (tested[k] && (pts[k] == p || pts[(k + 1) % pts.size()] == p)) q = std::min(q, fan_quality(s, i, k));
+      if (tested[k] && (pts[k] == p || pts[(k + 1) % pts.size()] == p))
+        sc.quality = std::min(sc.quality, fan_quality(s, i, k));
   }
-  return q;
+  return sc;
 }
 
 // x projected on the plane of primal cell c (its first vertex, its corners'
@@ -87,12 +95,12 @@ bool smooth_point(PolySurface& s, const PrimalMesh& m, const PointStar& st, std:
   for (std::uint32_t q : nb) mean += s.point(q);
   mean = mean / double(nb.size());
   const Point3 old = s.point(p);
-  const double before = worst(s, st.polygons[p], p);
+  const Score before = score(s, st.polygons[p], p);
   for (double step : {1.0, 0.5}) {
     const Point3 x = on_cell_plane(m, PrimalCellId(std::size_t(s.point_origin(p).id)), old + step * (mean - old));
     if (!is_finite(x) || x == old) continue;
     s.set_point(p, x);
-    if (worst(s, st.polygons[p], p) > before) return true;
+    if (score(s, st.polygons[p], p).better_than(before)) return true;
     s.set_point(p, old);
   }
   return false;

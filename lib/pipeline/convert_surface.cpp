@@ -4,6 +4,7 @@
 #include <sys/resource.h>
 
 #include "classify/classify_primal.h"
+#include "core/error.h"
 #include "core/interrupt.h"
 #include "core/stopwatch.h"
 #include "dual/surface_dual.h"
@@ -54,7 +55,7 @@ bool is_surface_soup(const TetSoup& soup) {
   return soup.tets.empty() && soup.other_cells.empty() && !(soup.triangles.empty() && soup.quads.empty());
 }
 
-SurfaceConvertResult convert_surface(const TetSoup& soup, const SurfaceSmoothParams& smooth,
+SurfaceConvertResult convert_surface(const TetSoup& soup, const SurfaceConvertParams& params,
                                      const ConvertHooks& hooks) {
   SurfaceConvertResult r;
   r.primal = stage(r.report, hooks, "primal", [&](Json& st) {
@@ -71,7 +72,7 @@ SurfaceConvertResult convert_surface(const TetSoup& soup, const SurfaceSmoothPar
     return d;
   });
   r.smooth = stage(r.report, hooks, "smooth", [&](Json& st) {
-    SurfaceSmoothReport sm = smooth_surface(r.dual, r.primal, smooth);
+    SurfaceSmoothReport sm = smooth_surface(r.dual, r.primal, params.smooth);
     st.set("sweeps", sm.sweeps);
     st.set("moved", sm.moved);
     st.set("min_quality_before", sm.min_quality_before);
@@ -86,7 +87,21 @@ SurfaceConvertResult convert_surface(const TetSoup& soup, const SurfaceSmoothPar
     st.set("area", area_json(r.areas));
     return v;
   });
+  if (params.require_valid && r.verdicts.invalid > 0) {
+    std::string what = std::to_string(r.verdicts.invalid) + " polygons are not star-shaped (--require-valid):";
+    for (const std::string& item : invalid_polygon_items(r, 10)) what += " " + item + ";";
+    throw InputError(r.primal.source(), "", what);
+  }
   return r;
+}
+
+std::vector<std::string> invalid_polygon_items(const SurfaceConvertResult& r, std::size_t limit) {
+  std::vector<std::string> items;
+  for (std::size_t i = 0; i < r.dual.num_polygons() && items.size() < limit; ++i)
+    if (!r.verdicts.valid[i])
+      items.push_back("polygon " + std::to_string(i) + " (vertex " + std::to_string(r.dual.primal_vertex(i) + 1) +
+                      ", surface " + std::to_string(r.dual.surface(i)) + ")");
+  return items;
 }
 
 Json write_surface_result(const SurfaceConvertResult& r, const std::string& path, const SurfaceWriter& writer,
@@ -100,12 +115,12 @@ Json write_surface_result(const SurfaceConvertResult& r, const std::string& path
 }
 
 SurfaceConvertResult convert_surface_file(TetSoup soup, const std::string& in, const std::string& out,
-                                          std::string_view format, const SurfaceSmoothParams& smooth,
+                                          std::string_view format, const SurfaceConvertParams& params,
                                           const PolyWriteOptions& options, const ConvertHooks& hooks) {
   const SurfaceWriter& writer = surface_writer_for(format, out);
   const std::string inputs[] = {in};
   check_output_target(inputs, out, OutputKind::File, options.foam.force, std::string(writer.extension()));
-  SurfaceConvertResult r = convert_surface(soup, smooth, hooks);
+  SurfaceConvertResult r = convert_surface(soup, params, hooks);
   r.written = stage(r.report, hooks, "write", [&](Json& st) {
     Json w = write_surface_result(r, out, writer, options);
     st = w;

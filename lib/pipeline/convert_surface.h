@@ -33,13 +33,24 @@ struct SurfaceConvertResult {
   std::vector<std::string> warnings;
 };
 
+struct SurfaceConvertParams {
+  SurfaceSmoothParams smooth;
+  // Refuse (InputError naming the polygons, nothing written) a dual with a
+  // polygon the exact fan test finds invalid (--require-valid).
+  bool require_valid = false;
+};
+
 // Whether a soup is a surface mesh: no volume cell, some triangle or quadrangle.
 bool is_surface_soup(const TetSoup& soup);
 
 // soup -> primal -> dual -> check. InputError naming the source and the
 // place for a bad mesh (degenerate cell, inconsistent orientation).
-SurfaceConvertResult convert_surface(const TetSoup& soup, const SurfaceSmoothParams& smooth = {},
+SurfaceConvertResult convert_surface(const TetSoup& soup, const SurfaceConvertParams& params = {},
                                      const ConvertHooks& hooks = {});
+
+// The invalid polygons, at most `limit`: "polygon P (vertex V, surface T)",
+// V in the input numbering (1-based).
+std::vector<std::string> invalid_polygon_items(const SurfaceConvertResult& r, std::size_t limit);
 
 // The cell arrays written with the dual: "valid" (Int32, 1 or 0).
 Json write_surface_result(const SurfaceConvertResult& r, const std::string& path, const SurfaceWriter& writer,
@@ -51,7 +62,7 @@ Json write_surface_result(const SurfaceConvertResult& r, const std::string& path
 // written atomically. `format`: the `--format` value ("" = by extension);
 // a volume format ("foam") is a UsageError before any work.
 SurfaceConvertResult convert_surface_file(TetSoup soup, const std::string& in, const std::string& out,
-                                          std::string_view format, const SurfaceSmoothParams& smooth = {},
+                                          std::string_view format, const SurfaceConvertParams& params = {},
                                           const PolyWriteOptions& options = {}, const ConvertHooks& hooks = {});
 
 // The machine-readable summary: counts, invalid polygons, the area identity

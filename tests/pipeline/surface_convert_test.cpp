@@ -10,6 +10,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/error.h"
 #include "generate/fracture_surfaces.h"
 #include "io/vtk_xml.h"
 #include "pipeline/convert_surface.h"
@@ -121,7 +122,7 @@ TEST(SurfaceConvert, SameBytesForAnyThreadCount) {
 }
 
 TEST(SurfaceConvert, LatticeNetworkSummary) {
-  const SurfaceConvertResult r = convert_surface(fracture_network_surface(8));
+  const SurfaceConvertResult r = convert_surface(fracture_network_surface(8), {{4}, true});
   EXPECT_EQ(r.verdicts.invalid, 0u);
   EXPECT_EQ(r.areas.planar, 3u);
   EXPECT_LE(r.areas.max_rel_error, 1e-12);
@@ -131,6 +132,32 @@ TEST(SurfaceConvert, LatticeNetworkSummary) {
   EXPECT_EQ(r.report.stages[1].name, "dual");
   EXPECT_EQ(r.report.stages[2].name, "smooth");
   EXPECT_GE(r.smooth.min_quality_after, r.smooth.min_quality_before);
+}
+
+TEST(SurfaceConvert, RequireValidRefusesAnInvalidDualNamingItsPolygons) {
+  // Three triangles around vertex 1, two of them obtuse at it (100 and 90
+  // degrees apart from the 170-degree one): their centres are clamped onto
+  // the far edges, and the fan triangle between the second and third centre
+  // turns clockwise (about -9e-4 against +3e-3 for the others: far from zero).
+  TetSoup soup;
+  soup.source = "fan.msh";
+  soup.points = {{0, 0, 0}, {0.1, 0, 0}, {-0.017365, 0.098481, 0}, {-0.196962, -0.034730, 0}};
+  soup.triangles = {{{0, 1, 2}, 1}, {{0, 2, 3}, 1}, {{0, 3, 1}, 1}};
+  const SurfaceConvertResult plain = convert_surface(soup, {{0}, false});
+  // Vertex 1's polygon, and those of vertices 3 and 4, whose fans hold the
+  // clamped centres lying next to their far edges.
+  ASSERT_EQ(plain.verdicts.invalid, 3u);
+  EXPECT_EQ(invalid_polygon_items(plain, 2),
+            (std::vector<std::string>{"polygon 0 (vertex 1, surface 1)", "polygon 2 (vertex 3, surface 1)"}));
+  try {
+    convert_surface(soup, {{0}, true});
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("fan.msh: 3 polygons are not star-shaped (--require-valid): polygon 0 (vertex 1"));
+  }
+  // Smoothing lowers the count of invalid polygons (the centres move within
+  // their triangles' plane; no move makes a valid polygon invalid).
+  EXPECT_LT(convert_surface(soup, {{8}, false}).verdicts.invalid, 3u);
 }
 
 TEST(SurfaceConvert, DegenerateTriangleIsNamedAndNothingWritten) {
