@@ -33,12 +33,31 @@ void mirror(CellSoup& s, std::size_t c) {
   for (int i = 0; i < d.num_vertices; ++i) v[i] = old[d.mirror[i]];
 }
 
+// A surface cell (triangle, quadrangle) with three consecutive corners on one
+// line has no normal: an InputError naming it. EXACT: collinear iff orient2d
+// is zero on all three coordinate projections (dropping a coordinate is exact).
+void check_surface_cell(const CellSoup& s, std::size_t c) {
+  const auto v = s.cell(c);
+  for (std::size_t k = 0; k < (v.size() == 3 ? 1 : v.size()); ++k) {
+    const Point3 &a = s.points[v[k]], &b = s.points[v[(k + 1) % v.size()]], &d = s.points[v[(k + 2) % v.size()]];
+    if (orient2d(a.x, a.y, b.x, b.y, d.x, d.y) == Sign::Zero && orient2d(a.y, a.z, b.y, b.z, d.y, d.z) == Sign::Zero &&
+        orient2d(a.z, a.x, b.z, b.x, d.z, d.x) == Sign::Zero)
+      throw InputError(s.source, cell_place(s, c),
+                       cell_place(s, c) + " is degenerate (its corners " + std::to_string(v[k] + 1) + ", " +
+                           std::to_string(v[(k + 1) % v.size()] + 1) + ", " + std::to_string(v[(k + 2) % v.size()] + 1) +
+                           " are collinear)");
+  }
+}
+
 void orient_cells(CellSoup& s, std::vector<std::string>* warnings) {
   std::array<std::size_t, kNumCellTypes> total{}, inverted{};
   std::array<std::size_t, kNumCellTypes> first_inverted{};
   for (std::size_t c = 0; c < s.num_cells(); ++c) {
     const std::size_t t = std::size_t(s.cell_type[c]);
-    if (descriptor(s.cell_type[c]).dim != 3) continue;
+    if (descriptor(s.cell_type[c]).dim != 3) {
+      check_surface_cell(s, c);
+      continue;
+    }
     int corner = -1;
     const int o = cell_orientation(s, c, corner);
     if (o == 0)

@@ -7,8 +7,10 @@
 #include "core/error.h"
 #include "core/stopwatch.h"
 #include "io/format_registry.h"
+#include "io/read_any_mesh.h"
 #include "io/vtu_poly_reader.h"
 #include "pipeline/convert.h"
+#include "pipeline/convert_surface.h"
 #include "pipeline/summary.h"
 
 namespace polydual::cli {
@@ -18,7 +20,10 @@ const CommandSpec kConvert{
     "Builds the polyhedral dual of a classified tet mesh (paper Algorithm 1), checks\n"
     "every cell with the exact star-shaped test, untangles and smooths it, and writes\n"
     "VTU (VTK_POLYHEDRON) or an OpenFOAM case directory (OUT/constant/polyMesh).\n"
-    "IN is read by its extension: " + mesh_extensions_text() + ".",
+    "IN is read by its extension: " + mesh_extensions_text() + ".\n"
+    "A Gmsh mesh of surfaces alone (a fracture network) gives its surface dual:\n"
+    "one polygon per side of each vertex, checked exactly, smoothed within the\n"
+    "surfaces (not with --optimize none), written as VTU of VTK_POLYGON cells.",
     1, 1,
     {"-o", "--format", "--force", "--vtu-encoding", "--zlib", "--feature-angle", "--strong-angle", "--boundary", "--no-cleanup", "--collapse-tol", "--optimize", "--planarity", "--no-optimize-tets", "--optimize-tets", "--tet-sweeps", "--tet-flips", "--tet-flip-rounds", "--no-split", "--split-rounds", "--no-coarsen", "--require-valid", "--metric",
      "--derivatives", "--relaxation", "--tol", "--polish-sweeps", "--polish-share", "--worst-rounds", "--settle-move", "--max-iter", "--threads", "--json", "--quiet"}};
@@ -33,8 +38,39 @@ const CommandSpec kCheck{
     1, 1,
     {"--threads", "--json", "--quiet"}};
 
-int cmd_convert(const Settings& s) {
-  if (s.out.empty()) throw UsageError("convert needs -o OUT");
+namespace {
+
+// The dual of a surface mesh (pipeline/convert_surface.h): polygons.
+int convert_surface_mesh(const Settings& s, TetSoup soup) {
+  ProgressPrinter progress(s.quiet);
+  // --optimize none or untangle: the dual points stay where Algorithm 1 puts them.
+  SurfaceConvertParams params;
+  const auto method = s.params.optim.method;
+  if (method == OptimParams::Method::None || method == OptimParams::Method::Untangle) params.smooth.sweeps = 0;
+  params.require_valid = s.params.split.require_valid;
+  const SurfaceConvertResult r = convert_surface_file(std::move(soup), s.positional[0], s.out, s.format, params,
+                                                      s.write, progress.hooks());
+  progress.end_line();
+  print_warnings(r.warnings, s.quiet);
+  const Json summary = surface_summary(r);
+  if (s.json) print_json(summary);
+  else if (!s.quiet)
+    std::printf("%s: surface dual of %zu cells: %zu polygons, %zu points, %zu invalid; area identity on %zu planar "
+                "surface(s): max relative error %.3g (all %zu surfaces: %.3g); smoothing moved %zu points, min fan "
+                "quality %.3g -> %.3g; %.3f s\n",
+                s.out.c_str(), r.primal.num_cells(), r.dual.num_polygons(), r.dual.num_points(), r.verdicts.invalid,
+                r.areas.planar, r.areas.max_rel_error, r.areas.surfaces.size(), r.areas.max_rel_error_all,
+                r.smooth.moved, r.smooth.min_quality_before, r.smooth.min_quality_after, r.report.seconds);
+  if (r.verdicts.invalid > 0) {
+    const Defect d{"invalid_polygons", "polygons not star-shaped about their primal vertex", r.verdicts.invalid,
+                   invalid_polygon_items(r, 10)};
+    print_defects("convert", "warning", s.out + " written with polygons that are not star-shaped (--require-valid "
+                                        "refuses it):", {d});
+  }
+  return 0;
+}
+
+int convert_volume_mesh(const Settings& s) {
   const PolyFormat format = poly_format_for(s.format, s.out);
   ProgressPrinter progress(s.quiet);
   const ConvertResult r = convert_file(s.positional[0], s.out, format, s.params, progress.hooks(), s.write);
@@ -50,6 +86,22 @@ int cmd_convert(const Settings& s) {
     print_defects("convert", "warning", s.out + " written with cells that are not star-shaped (--require-valid refuses it):",
                   {invalid});
   return 0;
+}
+
+}  // namespace
+
+int cmd_convert(const Settings& s) {
+  if (s.out.empty()) throw UsageError("convert needs -o OUT");
+  try {
+    return convert_volume_mesh(s);
+  } catch (const InputError&) {
+    // A mesh of surfaces alone (no volume cell), which the volume readers
+    // refuse, converts to the polygons of its surface dual; the tet path is
+    // left as it was and pays no second read.
+    TetSoup soup = read_any_mesh(s.positional[0]);
+    if (!is_surface_soup(soup)) throw;
+    return convert_surface_mesh(s, std::move(soup));
+  }
 }
 
 int cmd_check(const Settings& s) {

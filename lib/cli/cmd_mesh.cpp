@@ -73,7 +73,8 @@ void print_model(const std::string& path, const ClassifiedTetMesh& m, const Json
 }  // namespace
 
 // A mixed or surface mesh: built as a primal (which checks orientation and
-// conformity, exactly) and counted; `convert` makes a volume mesh's dual.
+// conformity, exactly) and counted; `convert` makes its dual (a volume
+// mesh's: pipeline/convert_mixed.h; a surface mesh's: pipeline/convert_surface.h).
 int info_mixed(const Settings& s, const TetSoup& soup, Json seconds) {
   Stopwatch clock;
   std::vector<std::string> warnings;
@@ -99,8 +100,8 @@ int info_mixed(const Settings& s, const TetSoup& soup, Json seconds) {
     std::printf("%s: a %s mesh: %s; %zu vertices, %zu faces, %zu edges (conformal%s)\n",
                 s.positional[0].c_str(), m.dim() == 3 ? "mixed" : "surface", describe_cell_counts(counts).c_str(),
                 m.num_vertices(), m.num_faces(), m.num_edges(), m.dim() == 3 ? ", every cell positively oriented" : "");
-    if (m.dim() == 3) std::printf("  `convert` makes its dual (no split: the split works on tet meshes only)\n");
-    else std::printf("  its dual is not implemented yet: `convert` takes volume meshes only\n");
+    std::printf(m.dim() == 3 ? "  `convert` makes its dual (no split: the split works on tet meshes only)\n"
+                             : "  `convert` builds its surface dual (polygons, VTU)\n");
   }
   return 0;
 }

@@ -14,6 +14,7 @@
 #include "io/output_guard.h"
 #include "io/write_context.h"
 #include "mesh/poly_mesh.h"
+#include "mesh/poly_surface.h"
 #include "mesh/tet_soup.h"
 
 namespace polydual {
@@ -47,9 +48,26 @@ class PolyWriter {
                      Json& record) const = 0;
 };
 
+// Writes the polygon mesh of a surface dual (mesh/poly_surface.h).
+class SurfaceWriter {
+ public:
+  virtual ~SurfaceWriter() = default;
+  virtual std::string_view name() const = 0;       // the `--format` value
+  virtual std::string_view extension() const = 0;  // ".vtu"
+  virtual std::string_view help() const = 0;
+  // Writes atomically; adds the writer's own fields to `record`.
+  virtual void write(const PolySurface& surface, const std::string& path, const WriteContext& ctx,
+                     Json& record) const = 0;
+};
+
 // All registered formats, in registration order.
 const std::vector<const MeshReader*>& mesh_readers();
 const std::vector<const PolyWriter*>& poly_writers();
+const std::vector<const SurfaceWriter*>& surface_writers();
+// The surface writer for `--format` `requested` (empty: by `path`'s
+// extension). UsageError when no surface writer has that name or extension
+// (e.g. "foam": an OpenFOAM case holds volume cells), listing the known ones.
+const SurfaceWriter& surface_writer_for(std::string_view requested, const std::string& path);
 
 // The reader of `path`'s extension (case-insensitive). An unknown extension
 // is an InputError naming the file and listing the known extensions (after

@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "io/format_registry.h"
+#include "io/vtu_surface_writer.h"
 #include "io/write_poly_mesh.h"
 
 namespace polydual {
@@ -37,9 +38,20 @@ class FoamPolyWriter final : public PolyWriter {
   }
 };
 
+class VtuSurfaceWriter final : public SurfaceWriter {
+ public:
+  std::string_view name() const override { return "vtu"; }
+  std::string_view extension() const override { return ".vtu"; }
+  std::string_view help() const override { return "VTK XML file of VTK_POLYGON cells (*.vtu)"; }
+  void write(const PolySurface& s, const std::string& path, const WriteContext& ctx, Json&) const override {
+    write_vtu_surface(s, path, ctx.cell_fields, ctx.options.vtu);
+  }
+};
+
 // constinit: constant-initialised, so usable from other files' static initialisers.
 constinit const VtuPolyWriter kVtuWriter{};
 constinit const FoamPolyWriter kFoamWriter{};
+constinit const VtuSurfaceWriter kVtuSurfaceWriter{};
 
 std::string joined(const std::vector<std::string>& parts, const char* sep) {
   std::string s;
@@ -52,6 +64,25 @@ std::string joined(const std::vector<std::string>& parts, const char* sep) {
 const std::vector<const PolyWriter*>& poly_writers() {
   static const std::vector<const PolyWriter*> all = {&kVtuWriter, &kFoamWriter};
   return all;
+}
+
+const std::vector<const SurfaceWriter*>& surface_writers() {
+  static const std::vector<const SurfaceWriter*> all = {&kVtuSurfaceWriter};
+  return all;
+}
+
+const SurfaceWriter& surface_writer_for(std::string_view requested, const std::string& path) {
+  const std::string ext = lower_extension(path);
+  std::vector<std::string> known;
+  for (const SurfaceWriter* w : surface_writers()) {
+    if (requested.empty() ? w->extension() == ext : w->name() == requested) return *w;
+    known.push_back(std::string(w->name()) + " (" + std::string(w->extension()) + ")");
+  }
+  if (!requested.empty())
+    throw UsageError("--format " + std::string(requested) + " cannot hold the dual of a surface mesh (polygons; " +
+                     "surface formats: " + joined(known, ", ") + ")");
+  throw UsageError("output '" + path + "': unsupported extension '" + ext + "' for the dual of a surface mesh (known: " +
+                   joined(known, ", ") + ")");
 }
 
 std::string_view PolyFormat::name() const { return w_->name(); }

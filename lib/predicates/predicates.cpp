@@ -334,6 +334,16 @@ Sign orient3d_centroid(const Point3& a, const Point3& b, const Point3& c, const 
       predicate_counters().overlap_exact);
 }
 
+Sign surface_turn(const Point3& r, const Point3& p, const Point3& q, const Vec3& n) {
+  return filtered_sign(
+      [&](auto zero) {
+        using NT = decltype(zero);
+        const V3<NT> u = sub<NT>(p, r), v = sub<NT>(q, r);
+        return dot3(cross3(u, v), V3<NT>{NT(n.x), NT(n.y), NT(n.z)});
+      },
+      predicate_counters().surface_exact);
+}
+
 Sign coplanar_orientation(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
   return to_sign(static_cast<int>(CGAL::coplanar_orientation(kp(a), kp(b), kp(c), kp(d))));
 }

@@ -78,6 +78,15 @@ inline Sign decomposition_tet_sign(const Point3& a, const Point3& b, std::span<c
 Sign decomposition_tet_sign_inexact(const Point3& a, const Point3& b, std::span<const Point3> face,
                                     std::span<const Point3> cell);
 
+// The surface dual's fan test (design §15): the sign of n . ((p - r) x (q - r)),
+// i.e. of orient3d(r, p, q, r + n) without rounding r + n. Positive iff
+// (r, p, q) turns counterclockwise seen from the side n points to. EXACT for
+// the given doubles (interval filter, exact Mpzf fallback); n is a direction
+// the caller constructed in floating point (a primal cell's normal), so the
+// decision is exact given that direction. For r, p, q in a plane z = const
+// and n = (0, 0, k), k > 0, it equals orient2d of their (x, y) exactly.
+Sign surface_turn(const Point3& r, const Point3& p, const Point3& q, const Vec3& n);
+
 // --- For the input's self-overlap check (classify/self_overlap.h). Triangles
 // must be non-degenerate and segments of positive length (the callers pass
 // faces and edges of positively oriented tets).
@@ -115,7 +124,8 @@ struct PredicateCounters {
   std::atomic<std::uint64_t> star_exact{0};
   std::atomic<std::uint64_t> circ_exact{0};
   std::atomic<std::uint64_t> overlap_exact{0};   // orient2d, orient3d_centroid
-  void reset() { star_exact = circ_exact = overlap_exact = 0; }
+  std::atomic<std::uint64_t> surface_exact{0};   // surface_turn
+  void reset() { star_exact = circ_exact = overlap_exact = surface_exact = 0; }
 };
 PredicateCounters& predicate_counters();
 // The star_exact fallbacks of the calling thread alone (never reset): a caller
