@@ -18,7 +18,7 @@
 namespace polydual::cli {
 
 const CommandSpec kDemo{
-    "demo", "demo [--out DIR] [--tets N] [--domains LIST] [--optimize none|untangle|local|global]",
+    "demo", "demo [--out DIR] [--tets N] [--domains LIST] [--optimize auto|none|untangle|local|global]",
     "Generates the paper's domains, builds and optimises their polyhedral duals, writes\n"
     "DIR/<domain>.msh, DIR/<domain>.vtu, DIR/<domain>_case/ (OpenFOAM) and\n"
     "DIR/summary.json, re-checks every written VTU and prints a summary.",

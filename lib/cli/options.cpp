@@ -79,9 +79,10 @@ const std::vector<OptionDef> kTable = {
      "fail (exit 1, nothing written) if any cell is still invalid or the validation finds a defect (open cell, "
      "face error, missing model entity, volume mismatch), naming each cell",
      nullptr, [](Settings& s, const std::string&) { s.params.split.require_valid = true; }},
-    {"--optimize", K::Choice, "none|untangle|local|global", kNoRange, kNoRange,
+    {"--optimize", K::Choice, "auto|none|untangle|local|global", kNoRange, kNoRange,
      "untangle and smooth: the paper's local Newton scheme, a global Ceres L-BFGS solve, untangling only "
-     "(certified valid, no smoothing), or none",
+     "(certified valid, no smoothing), or none; auto: local on tet meshes, untangle on mixed meshes (smoothing "
+     "would make their prism and hexahedron layers isotropic)",
      [](const Settings& d) { return std::string(method_name(d.params.optim.method)); },
      [](Settings& s, const std::string& v) { s.params.optim.method = parse_method(v); }},
     {"--no-optimize-tets", K::Flag, "", kNoRange, kNoRange,

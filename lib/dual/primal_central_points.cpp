@@ -29,6 +29,27 @@ bool strictly_inside(const PrimalMesh& m, PrimalCellId c, const Point3& p) {
   return true;
 }
 
+// A prism's central point: the midpoint of its two triangles' central points
+// (each its circumcentre when it holds it, decided exactly). On a right prism
+// (an extruded triangle, as boundary layers and extruded meshes are) that is
+// the circumcentre of all six vertices, so the dual of an extruded Delaunay
+// triangulation is the extruded Voronoi diagram, orthogonal to the primal
+// edges as the tet dual is where it is well centred. The vertex mean when
+// the midpoint is not strictly inside the prism (EXACT test).
+CentralPoint prism_central_point(const PrimalMesh& m, PrimalCellId c) {
+  const auto v = m.cell_vertices(c);
+  const CentralPoint lo = triangle_central_point(m.point(v[0]), m.point(v[1]), m.point(v[2]));
+  const CentralPoint hi = triangle_central_point(m.point(v[3]), m.point(v[4]), m.point(v[5]));
+  CentralPoint out{(lo.p + hi.p) * 0.5, false, 0};
+  if (strictly_inside(m, c, out.p)) {
+    out.well_centred = true;
+    return out;
+  }
+  out.p = vertex_mean(m, v);
+  out.well_centred = strictly_inside(m, c, out.p);
+  return out;
+}
+
 }  // namespace
 
 CentralPoint cell_central_point(const PrimalMesh& m, PrimalCellId c) {
@@ -37,6 +58,7 @@ CentralPoint cell_central_point(const PrimalMesh& m, PrimalCellId c) {
     case CellType::Tet: return tet_central_point(m.point(v[0]), m.point(v[1]), m.point(v[2]), m.point(v[3]));
     case CellType::Triangle: return triangle_central_point(m.point(v[0]), m.point(v[1]), m.point(v[2]));
     case CellType::Quad: return {vertex_mean(m, v), false, 0};  // inside-ness needs the surface's orientation
+    case CellType::Prism: return prism_central_point(m, c);
     default: break;
   }
   CentralPoint out{vertex_mean(m, v), false, 0};

@@ -72,14 +72,15 @@ MixedPoints make_points(const PrimalMesh& m, bool keep, PolyMesh& pm, DualStats&
   // Independent per cell: parallel, the same result for any thread count.
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nc, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t c = r.begin(); c < r.end(); ++c) {
-      // A tet's centre by cell_central_point (circumcentre or clamped, as
-      // the tet builder's); another cell's is its vertex mean (the same rule)
-      // without the exact inside test, which nothing here reads (it cost a
-      // third of the points stage on a hex block).
+      // Tets' and prisms' centres by cell_central_point (circumcentres or
+      // clamped, the tet builder's rule; a right prism's circumcentre);
+      // another cell's is its vertex mean (the same rule) without the exact
+      // inside test, which nothing here reads (it cost a third of the points
+      // stage on a hex block).
       const PrimalCellId cid(c);
       const bool tet = m.cell_type(cid) == CellType::Tet;
       CentralPoint cp{{0, 0, 0}, false, 0};
-      if (tet) {
+      if (tet || m.cell_type(cid) == CellType::Prism) {
         cp = cell_central_point(m, cid);
       } else {
         const auto cv = m.cell_vertices(cid);

@@ -194,21 +194,23 @@ OptimReport optimize(PolyMesh& mesh, const ModelFacets* facets, const OptimParam
     throw UsageError("optimize: " + std::to_string(seed_cells.size()) + " seed flags for " +
                      std::to_string(mesh.num_cells()) + " cells");
   OptimReport rep;
-  optim_detail::Context ctx(mesh, facets, params, known);
+  OptimParams resolved = params;
+  if (resolved.method == OptimParams::Method::Auto) resolved.method = OptimParams::Method::Local;
+  optim_detail::Context ctx(mesh, facets, resolved, known);
   ctx.report = &rep;
   rep.phases = std::move(ctx.setup_phases);
   ctx.progress = &progress;
   ctx.seed_cells = seed_cells;
   // Every run ends with a record() of the final state, so its statistics are
   // the report's "after" (no extra pass over the cells).
-  if (params.method == OptimParams::Method::Local || params.method == OptimParams::Method::Untangle) ctx.init_gates();
+  if (resolved.method == OptimParams::Method::Local || resolved.method == OptimParams::Method::Untangle) ctx.init_gates();
   rep.foam_failing_before = rep.foam_failing_after = ctx.foam_failing();
   ctx.record(0);
   rep.before = ctx.last_stats;
   rep.invalid_before = static_cast<int>(rep.iterations.front().invalid);
-  if (params.method == OptimParams::Method::Local || params.method == OptimParams::Method::Untangle)
+  if (resolved.method == OptimParams::Method::Local || resolved.method == OptimParams::Method::Untangle)
     optim_detail::run_local(ctx);
-  if (params.method == OptimParams::Method::Global) optim_detail::run_global(ctx);
+  if (resolved.method == OptimParams::Method::Global) optim_detail::run_global(ctx);
   rep.after = ctx.last_stats;
   rep.foam_failing_after = ctx.foam_failing();
   for (std::uint32_t c = 0; c < ctx.foam_ok.size(); ++c)
@@ -303,7 +305,7 @@ void OptimParams::validate() const {
   check_param("OptimParams::global_iterations_per_round", "iterations", {1, double(kMaxIterLimit)},
               global_iterations_per_round);
   check_param("OptimParams::planarity", "weight of the face-flatness term", {0, kMaxPlanarity}, planarity);
-  if (planarity > 0 && method != Method::Local && method != Method::None)
+  if (planarity > 0 && method != Method::Local && method != Method::Auto && method != Method::None)
     throw UsageError(std::string("OptimParams::planarity: the face-flatness term is in the local scheme only, not in '") +
                      method_name(method) + "' (use --optimize local)");
 }
@@ -338,7 +340,8 @@ OptimParams::Method parse_method(std::string_view s) {
   if (s == "local") return OptimParams::Method::Local;
   if (s == "global") return OptimParams::Method::Global;
   if (s == "untangle") return OptimParams::Method::Untangle;
-  throw UsageError("unknown optimisation method '" + std::string(s) + "' (expected none|untangle|local|global)");
+  if (s == "auto") return OptimParams::Method::Auto;
+  throw UsageError("unknown optimisation method '" + std::string(s) + "' (expected auto|none|untangle|local|global)");
 }
 
 Metric parse_metric(std::string_view s) {
@@ -362,6 +365,7 @@ const char* method_name(OptimParams::Method m) {
     case OptimParams::Method::Local: return "local";
     case OptimParams::Method::Global: return "global";
     case OptimParams::Method::Untangle: return "untangle";
+    case OptimParams::Method::Auto: return "auto";
   }
   return "none";
 }

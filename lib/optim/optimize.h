@@ -21,7 +21,12 @@
 namespace polydual {
 
 struct OptimParams {
-  enum class Method : std::uint8_t { None, Local, Global, Untangle };
+  // Auto: the pipeline's default (PipelineParams): Local on tet meshes,
+  // Untangle on mixed meshes, whose prism and hexahedron layers the kappa
+  // objective would make isotropic (a wall cell of half the first layer's
+  // height grew fourfold on a Gmsh boundary layer, experiments/boundary_layer.py).
+  // optimize() runs Auto as Local.
+  enum class Method : std::uint8_t { None, Local, Global, Untangle, Auto };
   enum class Derivatives : std::uint8_t { FiniteDifference, Exact, Analytic, Lagged, Corrected };
 
   // Optimiser. Default Local (the paper's scheme). Untangle: the local scheme's
@@ -209,7 +214,7 @@ OptimReport optimize(PolyMesh& mesh, const ModelFacets* facets, const OptimParam
                      std::span<const CellVerdict> known = {});
 
 // CLI parsers; throw UsageError on an unknown value.
-OptimParams::Method parse_method(std::string_view s);             // none|untangle|local|global
+OptimParams::Method parse_method(std::string_view s);             // auto|none|untangle|local|global
 Metric parse_metric(std::string_view s);                          // q1|q2
 OptimParams::Derivatives parse_derivatives(std::string_view s);   // analytic|corrected|lagged|fd|exact
 const char* method_name(OptimParams::Method m);

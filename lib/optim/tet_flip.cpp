@@ -341,6 +341,7 @@ ClassifiedTetMesh rebuild(const ClassifiedTetMesh& mesh, const FlipMesh& w) {
   }
   TetMeshBuilder::model(out) = mesh.model();
   TetMeshBuilder::classification_warnings(out) = mesh.classification_warnings();
+  TetMeshBuilder::marker_features(out) = mesh.marker_features();
   return out;
 }
 

@@ -163,7 +163,13 @@ void run_mixed_stages(ConvertResult& r, const TetSoup& soup, const PipelineParam
     stats = primal_stats(p);
     return p;
   });
-  if (params.tetopt.enabled) r.warnings.push_back(soup.source + ": optimize_tets works on tet meshes only: skipped");
+  // The tet optimisation (on by default) moves tets only: recorded as skipped.
+  if (params.tetopt.enabled)
+    run_stage(rep, hooks, "optimize_tets", [&](Json& stats) {
+      stats = Json::object();
+      stats.set("skipped", "the tet optimisation works on tet meshes only");
+      return 0;
+    });
   r.mesh = mixed_dual_stages(r, params, hooks);
   const bool optimise = params.optim.method != OptimParams::Method::None;
   r.check = run_stage(rep, hooks, "check", [&](Json& stats) {
@@ -175,7 +181,11 @@ void run_mixed_stages(ConvertResult& r, const TetSoup& soup, const PipelineParam
   if (optimise) {
     run_stage(rep, hooks, "optimize", [&](Json& stats) {
       const ModelFacets facets = model_facets(r.mixed->mesh);
-      stats = optimize(r.mesh, &facets, params.optim, hooks.progress, {}, r.check.verdicts).to_json();
+      // Auto untangles only: the kappa objective would make the layers of
+      // prisms and hexahedra isotropic (OptimParams::Method::Auto).
+      OptimParams optim = params.optim;
+      if (optim.method == OptimParams::Method::Auto) optim.method = OptimParams::Method::Untangle;
+      stats = optimize(r.mesh, &facets, optim, hooks.progress, {}, r.check.verdicts).to_json();
       return 0;
     });
     r.check = run_stage(rep, hooks, "check_after", [&](Json& stats) {

@@ -13,6 +13,10 @@
 namespace polydual {
 
 struct PipelineParams {
+  // The optimiser's method is Auto (optim/optimize.h): local on tet meshes,
+  // untangling only on mixed meshes.
+  PipelineParams() { optim.method = OptimParams::Method::Auto; }
+
   ClassifyParams classify;  // feature angle of the inference
   TetOptParams tetopt;      // kappa optimisation of the input tets (enabled = false skips the stage)
   DualParams dual;          // Algorithm 1 and its cleanup

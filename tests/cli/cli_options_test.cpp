@@ -112,7 +112,7 @@ TEST(CliOptions, HelpListsEveryOptionWithItsDefault) {
   };
   const Expect cases[] = {
       {"convert", {"-o OUT", "--format vtu|foam", "--feature-angle DEG", "(default 30)", "--boundary keep|caps", "--no-cleanup",
-                   "--collapse-tol X", "(default 0.001)", "--optimize none|untangle|local|global", "(default local)",
+                   "--collapse-tol X", "(default 0.001)", "--optimize auto|none|untangle|local|global", "(default auto)",
                    "--metric q1|q2", "(default q1)", "--derivatives corrected|analytic|lagged|fd|exact", "(default corrected)",
                    "--max-iter N", "(default 20)", "--threads N", "--json"}},
       {"generate", {"--tets N", "(default 10000)", "-o OUT", "--threads N", "--quiet"}},
@@ -272,11 +272,11 @@ TEST(CliOptions, JsonOrText) {
   EXPECT_THAT(text.out, Not(HasSubstr("\"invalid_before\"")));
   const std::string json = convert_json("--optimize none", "j.vtu");
   EXPECT_EQ(jq(json, "d['output']['format']"), "vtu");
-  EXPECT_EQ(jq(json, "sorted(d['seconds'].keys()) == sorted(['read', 'classify', 'cuts', 'dual', 'star_test', 'split', 'check_split', 'write', "
+  EXPECT_EQ(jq(json, "sorted(d['seconds'].keys()) == sorted(['read', 'classify', 'optimize_tets', 'cuts', 'dual', 'star_test', 'split', 'check_split', 'write', "
                      "'total', 'stages'])"),
             "True");
   EXPECT_EQ(jq(json, "list(d['seconds']['stages'].keys())"),
-            "['read', 'classify', 'cuts', 'dual', 'cleanup', 'cells', 'check', 'split', 'check_split', 'write']");
+            "['read', 'classify', 'optimize_tets', 'cuts', 'dual', 'cleanup', 'cells', 'check', 'split', 'check_split', 'write']");
   CmdResult chk = run("check " + out + " --json");
   ASSERT_EQ(chk.code, 0) << chk.err;
   EXPECT_EQ(jnum(chk.out, "d['cells']"), jnum(json, "d['cells']"));

@@ -93,12 +93,13 @@ std::vector<double> sorted_cell_volumes(const PolyMesh& m) {
   return v;
 }
 
-// The raw dual: no optimisation, no split (their choices may depend on the
-// order of a tet's vertices, which a flip changes).
+// The raw dual: no optimisation of the tets or the dual, no split (their
+// choices may depend on the order of a tet's vertices, which a flip changes).
 PipelineParams raw_dual() {
   PipelineParams p;
   p.optim.method = OptimParams::Method::None;
   p.split.enabled = false;
+  p.tetopt.enabled = false;
   return p;
 }
 

@@ -67,6 +67,7 @@ StageResult run_stages(const TetSoup& soup, const StageParams& p, const std::str
   pp.dual = p.dual;
   pp.optim = p.optim;
   pp.split.enabled = false;  // the stages above build no cuts
+  pp.tetopt.enabled = false;  // nor move the tets
   const ConvertResult c = convert(soup, pp);
   EXPECT_TRUE(c.mesh.points == r.mesh.points) << tag;
   EXPECT_TRUE(c.mesh.face_points == r.mesh.face_points) << tag;

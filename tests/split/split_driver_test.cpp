@@ -55,6 +55,7 @@ TEST(SplitDriver, SameMeshAsThePipelineWithoutOptimiser) {
     const TetSoup soup = random_classified_mesh(split_test_mesh_params(seed));
     PipelineParams p;
     p.optim.method = OptimParams::Method::None;
+    p.tetopt.enabled = false;  // drive_split composes the stages without it
     const ConvertResult r = convert(soup, p);
     const Driven d = drive_split(soup, p, {});
     const std::string what = "seed " + std::to_string(seed);
