@@ -95,6 +95,14 @@ struct DualPoints {
 // Whether edge e / vertex v gets a dual point: on a model edge / at a model
 // vertex (the paper), where cuts say so (cut_topology.h), and in keep mode on
 // every model entity (an edge or vertex classified in dimension <= 2).
+// Per vertex k of triangle f: whether the edge opposite it is on a model edge.
+std::array<bool, 3> model_edges_opposite(const ClassifiedTetMesh& m, TriId f) {
+  const auto& v = m.triangle(f);
+  std::array<bool, 3> out{};
+  for (int k = 0; k < 3; ++k) out[k] = m.edge_class(m.triangle_edge(f, v[(k + 1) % 3], v[(k + 2) % 3])).dim <= 1;
+  return out;
+}
+
 bool edge_has_point(const ClassifiedTetMesh& m, const CutTopology& ct, bool keep, EdgeId e) {
   if (keep && m.edge_class(e).dim <= 2) return true;
   return ct.active ? ct.stop(e) : m.edge_class(e).dim == 1;
@@ -167,6 +175,8 @@ DualPoints make_points(const ClassifiedTetMesh& m, const CutTopology& ct, bool k
           const bool model = m.on_model_face(TriId(f));
           const auto& v = m.triangle(TriId(f));
           CentralPoint c = keep && model ? triangle_inner_point(m.point(v[0]), m.point(v[1]), m.point(v[2]))
+                           : model       ? cap_triangle_point(m.point(v[0]), m.point(v[1]), m.point(v[2]),
+                                                              model_edges_opposite(m, TriId(f)).data())
                                          : triangle_central_point(m.point(v[0]), m.point(v[1]), m.point(v[2]));
           if (pin && pinned(m, ct.cuts, PointOrigin{2, std::uint32_t(f)})) {
             c.p = barycentre(m, PointOrigin{2, std::uint32_t(f)});

@@ -82,6 +82,14 @@ CentralPoint triangle_central_point(const Point3& a, const Point3& b, const Poin
   return {a + wb * u + wcc * v, wc};
 }
 
+CentralPoint cap_triangle_point(const Point3& a, const Point3& b, const Point3& c, const bool on_model_edge[3]) {
+  Sign s[3];
+  triangle_circumcenter_barycentric_signs(a, b, c, s);
+  for (int k = 0; k < 3; ++k)
+    if (on_model_edge[k] && s[k] != Sign::Positive) return {a + (1.0 / 3) * (b - a) + (1.0 / 3) * (c - a), false};
+  return triangle_central_point(a, b, c);
+}
+
 CentralPoint triangle_inner_point(const Point3& a, const Point3& b, const Point3& c) {
   Sign s[3];
   triangle_circumcenter_barycentric_signs(a, b, c, s);

@@ -36,4 +36,16 @@ CentralPoint triangle_central_point(const Point3& a, const Point3& b, const Poin
 // as triangle_central_point.
 CentralPoint triangle_inner_point(const Point3& a, const Point3& b, const Point3& c);
 
+// The centre of a model-face triangle under the paper's caps: the rule of
+// triangle_central_point, unless that point lies on an edge of the triangle
+// that is on a model edge (on_model_edge[k]: the edge opposite vertex k),
+// which happens when the angle at k is right or obtuse (EXACT: the sign of the
+// circumcentre's barycentric coordinate at k; an obtuse triangle's clamped
+// point lands on its longest edge): then the centroid. The caps join the
+// centres of the triangles round a vertex on a model edge with the edge's
+// midpoint; a centre on the model edge made the cap face between them flat
+// (all four points on the edge's line: a corner of kappa/3 9e13 on a CGAL
+// Mesh_3 mesh once the tet optimisation had moved its boundary vertices).
+CentralPoint cap_triangle_point(const Point3& a, const Point3& b, const Point3& c, const bool on_model_edge[3]);
+
 }  // namespace polydual

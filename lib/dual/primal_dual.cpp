@@ -48,7 +48,11 @@ void add_face_points(const PrimalMesh& m, bool keep, MixedPoints& d, DualStats& 
   for (const auto& [order, fid] : model_faces) {
     const auto fv = m.face_vertices(fid);
     const bool tri = fv.size() == 3;
+    bool opposite[3] = {false, false, false};  // the caps' rule (cap_triangle_point)
+    for (int k = 0; tri && k < 3; ++k)
+      opposite[k] = m.edge_class(m.find_edge(fv[(k + 1) % 3], fv[(k + 2) % 3])).dim <= 1;
     const CentralPoint c = keep && tri ? triangle_inner_point(m.point(fv[0]), m.point(fv[1]), m.point(fv[2]))
+                           : tri       ? cap_triangle_point(m.point(fv[0]), m.point(fv[1]), m.point(fv[2]), opposite)
                                        : face_central_point(m, fid);
     d.face_pt[fid.idx] = add(c.p, m.face_class(fid), 2, fid.idx);
     d.face_merge[fid.idx] = char(tri && c.well_centred && !keep);

@@ -12,6 +12,7 @@
 #include "classify/classify.h"
 #include "core/error.h"
 #include "dual/build_dual.h"
+#include "dual/central_points.h"
 #include "exact_volume.h"
 #include "generate/random_mesh.h"
 #include "io/unattached.h"
@@ -475,4 +476,29 @@ TEST(DualStages, ParamsValidateNamesFieldUnitAndRange) {
   CleanupStats cs;
   cs.merged_points = 3;
   EXPECT_NE(cs.to_json().dump(0).find("\"merged_points\":3"), std::string::npos);
+}
+
+// The caps' centre of a model-face triangle (dual/central_points.h): the
+// circumcentre of an acute triangle; the centroid when the angle opposite an
+// edge on a model edge is right or obtuse (the circumcentre, or the clamped
+// point, would lie on the model edge and flatten the cap face there); the
+// plain rule when that edge is not on a model edge.
+TEST(DualCentres, CapTriangleCentreLeavesModelEdges) {
+  const bool none[3] = {false, false, false}, edge_c[3] = {false, false, true};
+  const Point3 a{0, 0, 0}, b{2, 0, 0};
+  // Acute: the circumcentre, whatever the flags.
+  const Point3 acute{1, 1.5, 0};
+  EXPECT_EQ(cap_triangle_point(a, b, acute, edge_c).p, triangle_central_point(a, b, acute).p);
+  EXPECT_TRUE(cap_triangle_point(a, b, acute, edge_c).well_centred);
+  // Right angle at the apex (1, 1): circumcentre (1, 0, 0) on the edge ab.
+  const Point3 right{1, 1, 0};
+  EXPECT_EQ(triangle_central_point(a, b, right).p, (Point3{1, 0, 0}));
+  const CentralPoint r = cap_triangle_point(a, b, right, edge_c);
+  EXPECT_FALSE(r.well_centred);
+  EXPECT_NEAR(r.p.y, 1.0 / 3, 1e-15);
+  EXPECT_EQ(cap_triangle_point(a, b, right, none).p, (Point3{1, 0, 0}));
+  // Obtuse at the apex: the clamped point lands on ab (y == 0) unless ab is a model edge.
+  const Point3 obtuse{1, 0.3, 0};
+  EXPECT_EQ(triangle_central_point(a, b, obtuse).p.y, 0.0);
+  EXPECT_NEAR(cap_triangle_point(a, b, obtuse, edge_c).p.y, 0.1, 1e-15);
 }
