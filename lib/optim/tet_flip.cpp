@@ -424,11 +424,10 @@ ClassifiedTetMesh delaunay_flips(const ClassifiedTetMesh& mesh, const TetFlipPar
   try {
     out = rebuild(mesh, w);
   } catch (const InputError& e) {
-    // The flipped tets do not form a conformal mesh: a defect of the pass on
-    // some fracture and notch configurations of the random classified
-    // meshes (seed 150 of tests/split/split_pipeline_test.cpp's families),
-    // not yet found. The input is kept: the flips are an improvement, never
-    // a condition of correctness.
+    // The flipped tets do not form a conformal mesh. Seen only on moved tets
+    // that overlapped themselves (a boundary folded by the moves, which the
+    // pipeline now undoes first: proofs/tet_optimize.md T5); kept as a guard:
+    // the flips are an improvement, never a condition of correctness.
     rep.failed = e.what();
     rep.flips23 = rep.flips32 = 0;
     out = mesh;

@@ -15,6 +15,7 @@
 #include "io/output_guard.h"
 #include "io/format_registry.h"
 #include "io/read_tet_mesh.h"
+#include "classify/self_overlap.h"
 #include "pipeline/convert_mixed.h"
 #include "pipeline/run_stage.h"
 #include "split/split.h"
@@ -46,6 +47,39 @@ PolyMesh run_dual_stages(ConvertResult& r, const PipelineParams& params, const C
     stats.set("cells", pm.num_cells());
     return pm;
   });
+}
+
+// Whether the tets of m cover some place twice (classify/self_overlap.h).
+bool overlaps(const ClassifiedTetMesh& m, std::string* why) {
+  try {
+    check_self_overlap(m);
+    return false;
+  } catch (const InputError& e) {
+    *why = e.what();
+    return true;
+  }
+}
+
+// The tet optimisation (optim/tet_optimize.h). Every tet stays positive,
+// but vertices sliding on curved model faces can fold the boundary over
+// another part of it (a notched random mesh: two boundary triangles crossing,
+// proofs/tet_optimize.md T5): the result is checked as the input was, and
+// on an overlap the optimisation runs again with boundary vertices moving
+// only where the model is flat, which keeps the boundary's point set (T4).
+ClassifiedTetMesh optimise_tets(const ClassifiedTetMesh& primal, const TetOptParams& params, Json& stats) {
+  TetOptReport report;
+  ClassifiedTetMesh moved = optimize_tets(primal, params, &report);
+  std::string why;
+  if (params.move_curved && overlaps(moved, &why)) {
+    TetOptParams flat = params;
+    flat.move_curved = false;
+    moved = optimize_tets(primal, flat, &report);
+    stats = report.to_json();
+    stats.set("curved_moves_undone", why);
+    return moved;
+  }
+  stats = report.to_json();
+  return moved;
 }
 
 // The paper's caps join the centres of the boundary triangles round a
@@ -175,12 +209,7 @@ void run_pipeline(ConvertResult& r, const TetSoup& soup, const PipelineParams& p
   r.input_tets = r.primal.num_tets();
   if (release) *release = TetSoup{};
   if (params.tetopt.enabled)
-    r.primal = run_stage(rep, hooks, "optimize_tets", [&](Json& stats) {
-      TetOptReport report;
-      ClassifiedTetMesh moved = optimize_tets(r.primal, params.tetopt, &report);
-      stats = report.to_json();
-      return moved;
-    });
+    r.primal = run_stage(rep, hooks, "optimize_tets", [&](Json& stats) { return optimise_tets(r.primal, params.tetopt, stats); });
   // What the classification completed (an incomplete given classification).
   for (const std::string& w : r.primal.classification_warnings()) r.warnings.push_back(w);
   SplitState st;
