@@ -214,7 +214,7 @@ def main():
     msh = make_mesh(out, a.first)
     rec = {"mesh": os.path.basename(msh), "first_layer": a.first}
     info = run([a.polydual, "info", msh]).stdout.strip()
-    rec["info"] = info.splitlines()[0] if info else ""
+    rec["info"] = info.splitlines()[0].replace(msh, os.path.basename(msh)) if info else ""
     pd = os.path.join(out, "polydual")
     shutil.rmtree(pd, ignore_errors=True)
     p = run([a.polydual, "convert", msh, "-o", pd, "--format", "foam", "--json", "--quiet"])
