@@ -208,7 +208,7 @@ struct ChainWalker {
 void chain_faces(const PrimalMesh& m, const PrimalSides& sides, const MixedPoints& d, EdgeId e, const ChainWalker& ch,
                  PolyMesh& pm, std::vector<std::uint32_t>& scan, std::vector<std::size_t>& cuts,
                  std::vector<PointId>& loop) {
-  const auto [a, b] = m.edge(e);
+  const VertexId a = m.edge(e)[0], b = m.edge(e)[1];  // not a structured binding: the lambda below captures them
   const std::size_t n = ch.cells.size();
   cuts.clear();
   for (std::size_t k = 0; k < n; ++k)
