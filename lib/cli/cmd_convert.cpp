@@ -43,11 +43,7 @@ namespace {
 // The dual of a surface mesh (pipeline/convert_surface.h): polygons.
 int convert_surface_mesh(const Settings& s, TetSoup soup) {
   ProgressPrinter progress(s.quiet);
-  // --optimize none or untangle: the dual points stay where Algorithm 1 puts them.
-  SurfaceConvertParams params;
-  const auto method = s.params.optim.method;
-  if (method == OptimParams::Method::None || method == OptimParams::Method::Untangle) params.smooth.sweeps = 0;
-  params.require_valid = s.params.split.require_valid;
+  const SurfaceConvertParams params = surface_params(s.params);
   const SurfaceConvertResult r = convert_surface_file(std::move(soup), s.positional[0], s.out, s.format, params,
                                                       s.write, progress.hooks());
   progress.end_line();

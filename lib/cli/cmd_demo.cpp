@@ -12,16 +12,21 @@
 #include "generate/domains.h"
 #include "io/output_guard.h"
 #include "io/vtu_poly_reader.h"
+#include "io/read_any_mesh.h"
 #include "pipeline/convert.h"
+#include "pipeline/convert_surface.h"
 #include "pipeline/summary.h"
 
 namespace polydual::cli {
 
 const CommandSpec kDemo{
     "demo", "demo [--out DIR] [--tets N] [--domains LIST] [--optimize auto|none|untangle|local|global]",
-    "Generates the paper's domains, builds and optimises their polyhedral duals, writes\n"
-    "DIR/<domain>.msh, DIR/<domain>.vtu, DIR/<domain>_case/ (OpenFOAM) and\n"
-    "DIR/summary.json, re-checks every written VTU and prints a summary.",
+    "Generates the paper's domains, a boundary-layer domain of hexahedra and prisms\n"
+    "(layers) and a fracture network of triangles (dfn), builds and optimises their\n"
+    "duals, writes DIR/<domain>.msh, DIR/<domain>.vtu, DIR/<domain>_case/ (OpenFOAM,\n"
+    "volume domains) and DIR/summary.json, re-checks every polyhedral VTU written and\n"
+    "prints a summary (elements: the input's tets, cells or triangles; cells: the\n"
+    "dual's cells or polygons).",
     0, 0,
     {"--out", "--tets=20000", "--domains", "--optimize", "--force", "--threads", "--quiet"}};
 
@@ -40,45 +45,77 @@ std::vector<Domain> parse_domains(const std::string& list) {
 
 std::string val(const Json& j, const char* key) { return j.find(key) ? j.find(key)->dump(0) : "?"; }
 
-// One domain: generate, convert, write the VTU and the case, re-check the VTU.
-Json run_domain(Domain d, const Settings& s, const std::filesystem::path& dir) {
-  const Stopwatch clock;
-  const std::string name = domain_name(d);
-  const std::string msh = (dir / (name + ".msh")).string(), vtu = (dir / (name + ".vtu")).string();
-  write_domain_msh(d, static_cast<std::size_t>(s.tets), msh);
-  const double gen = clock.seconds();
+// One row of the table: the input's elements (tets, mixed cells, triangles),
+// the dual's cells (polygons) and faces, invalid cells before and after the
+// optimiser, closed cells, the check, and the seconds.
+void print_row(const std::string& name, const std::string& input, const std::string& cells, const std::string& faces,
+               const std::string& invalid0, const std::string& invalid, const std::string& closed, const char* check,
+               double seconds) {
+  std::printf("%-9s %8s %8s %9s %8s %8s %7s %6s %8.2f\n", name.c_str(), input.c_str(), cells.c_str(), faces.c_str(),
+              invalid0.c_str(), invalid.c_str(), closed.c_str(), check, seconds);
+  std::fflush(stdout);
+}
+
+// A tet or mixed domain: convert, write the VTU and the case, re-check the VTU.
+Json run_volume_domain(const std::string& name, const std::string& msh, const Settings& s,
+                       const std::filesystem::path& dir, const Stopwatch& clock) {
+  const std::string vtu = (dir / (name + ".vtu")).string();
   ProgressPrinter progress(s.quiet);
   const ConvertResult r = convert_file(msh, vtu, PolyFormat::Vtu, s.params, progress.hooks(), s.write);
   progress.end_line();
   Json j = convert_summary(r, s.params);
-  WriteContext foam;
-  foam.options = s.write;
-  foam.names = model_names(r.primal.model());
-  j.set("foam", write_poly_mesh(r.mesh, (dir / (name + "_case")).string(), PolyFormat::Foam, foam));
+  j.set("foam", write_result(r, (dir / (name + "_case")).string(), PolyFormat::Foam, s.write));
   const PolyMesh back = read_vtu_poly(vtu);
   const CheckResult back_check = check_mesh(back, nullptr);
   const Json chk = mesh_summary(back, back_check, nullptr);
-  j.set("domain", name);
-  j.set("generate_seconds", gen);
   j.set("recheck", chk);
   const bool same = val(chk, "invalid_cells") == val(j, "invalid_after") && val(chk, "cells") == val(j, "cells");
   // "FAIL": the validation of the dual or of the VTU read back found defects.
   const std::vector<Defect> defects = r.check.validation.defects(), back_defects = back_check.validation.defects();
   const bool sound = defects.empty() && back_defects.empty();
-  std::printf("%-9s %8s %8s %9s %8s %8s %7s %6s %8.2f\n", name.c_str(), val(j, "tets").c_str(),
-              val(j, "cells").c_str(), val(j, "faces").c_str(), val(j, "invalid_before").c_str(),
-              val(j, "invalid_after").c_str(), val(j, "closed_cells").c_str(), !sound ? "FAIL" : same ? "ok" : "DIFF",
-              clock.seconds());
-  std::fflush(stdout);
+  const std::size_t input = r.mixed ? r.mixed->mesh.num_cells() : r.input_tets ? r.input_tets : r.primal.num_tets();
+  print_row(name, std::to_string(input), val(j, "cells"), val(j, "faces"), val(j, "invalid_before"),
+            val(j, "invalid_after"), val(j, "closed_cells"), !sound ? "FAIL" : same ? "ok" : "DIFF", clock.seconds());
   if (!defects.empty()) print_defects("demo", "warning", name + ": the dual is not sound:", defects);
   if (!back_defects.empty()) print_defects("demo", "warning", vtu + " read back is not sound:", back_defects);
+  return j;
+}
+
+// A surface domain (design §15): the polygons of its dual, checked by the
+// exact fan test and the area identity on its planar surfaces ("FAIL" when
+// a polygon is invalid or the area identity misses by more than 1e-12).
+Json run_surface_domain(const std::string& name, const std::string& msh, const Settings& s,
+                        const std::filesystem::path& dir, const Stopwatch& clock) {
+  const std::string vtu = (dir / (name + ".vtu")).string();
+  ProgressPrinter progress(s.quiet);
+  const SurfaceConvertResult r = convert_surface_file(read_any_mesh(msh), msh, vtu, "", surface_params(s.params),
+                                                      s.write, progress.hooks());
+  progress.end_line();
+  Json j = surface_summary(r);
+  const bool sound = r.verdicts.invalid == 0 && r.areas.max_rel_error <= 1e-12;
+  print_row(name, std::to_string(r.primal.num_cells()), std::to_string(r.dual.num_polygons()), "-", "-",
+            std::to_string(r.verdicts.invalid), "-", sound ? "ok" : "FAIL", clock.seconds());
+  return j;
+}
+
+// One domain: generate its Gmsh file, then convert it as what it is.
+Json run_domain(Domain d, const Settings& s, const std::filesystem::path& dir) {
+  const Stopwatch clock;
+  const std::string name = domain_name(d);
+  const std::string msh = (dir / (name + ".msh")).string();
+  write_domain_msh(d, static_cast<std::size_t>(s.tets), msh);
+  const double gen = clock.seconds();
+  Json j = domain_kind(d) == DomainKind::Surface ? run_surface_domain(name, msh, s, dir, clock)
+                                                 : run_volume_domain(name, msh, s, dir, clock);
+  j.set("domain", name);
+  j.set("generate_seconds", gen);
   return j;
 }
 
 // Where the cells that stay invalid sit (paper §4: concave edges/corners and
 // fracture tips), and how many are slit cells at fracture tips.
 void print_remaining_invalid(const std::string& domain, const Json& j) {
-  if (val(j, "invalid_after") == "0") return;
+  if (!j.find("invalid_after") || val(j, "invalid_after") == "0") return;
   const Json& by = *j.find("invalid_by_class");
   std::printf("%s: %s cells stay invalid: %s at model vertices, %s at model edges, %s on model faces, "
               "%s interior; %s slit cells (fracture tips)\n",
@@ -138,7 +175,7 @@ int cmd_demo(const Settings& s) {
   s.params.validate();
   prepare_out_dir(dir, s.write.foam.force);
   Json all = Json::array();
-  std::printf("%-9s %8s %8s %9s %8s %8s %7s %6s %8s\n", "domain", "tets", "cells", "faces", "invalid0",
+  std::printf("%-9s %8s %8s %9s %8s %8s %7s %6s %8s\n", "domain", "elements", "cells", "faces", "invalid0",
               "invalid", "closed", "check", "seconds");
   for (Domain d : domains) all.push(run_domain(d, s, dir));
   for (std::size_t i = 0; i < domains.size(); ++i) print_remaining_invalid(domain_name(domains[i]), all.at(i));

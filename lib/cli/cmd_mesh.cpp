@@ -20,9 +20,10 @@ namespace polydual::cli {
 const CommandSpec kGenerate{
     "generate", "generate DOMAIN --tets N -o FILE [--threads N] [--quiet]",
     "Generates one of the demo domains (the paper's cube, twomat, fichera, fracture; the\n"
-    "fracture network 'network'; the finned box 'fins') with Gmsh,\n"
-    "fully classified, deterministic (same N => same mesh). The output format follows\n"
-    "FILE's extension: .msh (Gmsh 4.1, written by Gmsh), .mesh, .node, .vtu.\n"
+    "fracture network 'network'; the finned box 'fins'; the boundary layers of\n"
+    "hexahedra and prisms 'layers' and the surface fracture network 'dfn', .msh only)\n"
+    "with Gmsh, fully classified, deterministic (same N => same mesh). The output format\n"
+    "follows FILE's extension: .msh (Gmsh 4.1, written by Gmsh), .mesh, .node, .vtu.\n"
     "Gmsh meshes serially (its parallel mesher is not deterministic); --threads\n"
     "bounds polydual's own work (classification, writers).",
     1, 1,

@@ -21,7 +21,7 @@ struct Settings {
   std::string format;               // --format ("" = from the output name)
   std::string primal;               // --primal
   std::string out_dir = "polydual-demo";  // --out (demo)
-  std::string domains = "cube,twomat,fichera,fracture,network,fins";
+  std::string domains = "cube,twomat,fichera,fracture,network,fins,layers,dfn";
   long long tets = 0;               // --tets (0 = the command's default)
   int threads = 0;                  // --threads (0 = all cores)
   bool json = false, quiet = false, help = false;

@@ -22,7 +22,7 @@ namespace polydual {
 
 namespace {
 
-constexpr const char* kDomainNames[] = {"cube", "twomat", "fichera", "fracture", "network", "fins"};
+constexpr const char* kDomainNames[] = {"cube", "twomat", "fichera", "fracture", "network", "fins", "layers", "dfn"};
 static_assert(std::size(kDomainNames) == gmsh_module::kNumDomains);
 
 constexpr std::uint32_t kUnused = std::numeric_limits<std::uint32_t>::max();
@@ -107,13 +107,23 @@ void check_target(std::size_t target) {
 Domain parse_domain(const std::string& name) {
   for (int i = 0; i < gmsh_module::kNumDomains; ++i)
     if (name == kDomainNames[i]) return static_cast<Domain>(i);
-  throw UsageError("unknown domain '" + name + "' (valid: cube|twomat|fichera|fracture|network|fins)");
+  std::string valid;
+  for (const char* n : kDomainNames) valid += (valid.empty() ? "" : "|") + std::string(n);
+  throw UsageError("unknown domain '" + name + "' (valid: " + valid + ")");
+}
+
+DomainKind domain_kind(Domain d) {
+  return d == Domain::Layers ? DomainKind::Mixed : d == Domain::Dfn ? DomainKind::Surface : DomainKind::Tets;
 }
 
 std::string domain_name(Domain d) { return kDomainNames[static_cast<int>(d)]; }
 
 TetSoup generate_domain(Domain d, std::size_t target_tets) {
   check_target(target_tets);
+  if (domain_kind(d) != DomainKind::Tets)
+    throw UsageError("domain '" + domain_name(d) + "' is a " +
+                     (domain_kind(d) == DomainKind::Mixed ? "mixed" : "surface") +
+                     " mesh: it is generated as a Gmsh .msh file only");
   const gmsh_module::GmshApi& gmsh = gmsh_module::gmsh_api();
   gmsh_module::RawMesh raw;
   std::string error;

@@ -29,9 +29,21 @@ enum class Domain {
              // wall along a line and ending inside: y=0.5 from x=0 (x in [0,0.4],
              // z in [0.2,0.8]), z=0.5 from x=1 (x in [0.6,1], y in [0.2,0.8]) and
              // x=0.5 from y=1 (y in [0.65,1], z in [0.25,0.75])
+  Layers,    // a mixed mesh (design §14): a channel [-2,4]x[-1.5,1.5] around a
+             // cylinder of radius 0.5, extruded over z in [0,0.4] in 4 layers,
+             // with hexahedral boundary layers on the cylinder's wall (first
+             // layer 0.01 thick, ratio 1.3) and prisms elsewhere
+  Dfn,       // a surface mesh (design §15): the network's three rectangles on
+             // their own, a discrete fracture network of triangles crossing
+             // along lines
 };
 
-// "cube" | "twomat" | "fichera" | "fracture" | "network" | "fins"; throws UsageError listing these.
+// What a domain's mesh is made of: tets, mixed volume cells, or surface cells.
+enum class DomainKind { Tets, Mixed, Surface };
+DomainKind domain_kind(Domain d);
+
+// "cube" | "twomat" | "fichera" | "fracture" | "network" | "fins" | "layers" |
+// "dfn"; throws UsageError listing these.
 Domain parse_domain(const std::string& name);
 std::string domain_name(Domain d);
 
@@ -39,13 +51,16 @@ std::string domain_name(Domain d);
 inline constexpr std::size_t kMinTargetTets = 100;
 inline constexpr std::size_t kMaxTargetTets = 20'000'000;
 
-// Meshes domain d with about target_tets tetrahedra (within ~10-30%), all
+// Meshes tet domain d with about target_tets tetrahedra (within ~10-30%), all
 // positively oriented, full_classification = true. Throws UsageError on a bad
-// target and std::runtime_error when Gmsh fails.
+// target or a domain that is not of kind Tets (write its .msh instead), and
+// std::runtime_error when Gmsh fails.
 TetSoup generate_domain(Domain d, std::size_t target_tets);
 
 // The same mesh written by Gmsh's own msh 4.1 ASCII writer (all elements, with
 // $Entities), atomically: a temporary "<path>.tmp.<pid>.msh" renamed to path.
+// Every domain; target_tets counts the layers domain's volume cells and the
+// dfn domain's triangles.
 void write_domain_msh(Domain d, std::size_t target_tets, const std::string& path);
 
 }  // namespace polydual

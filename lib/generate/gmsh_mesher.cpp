@@ -6,6 +6,7 @@
 #include <gmsh.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iterator>
 #include <limits>
@@ -22,7 +23,7 @@ namespace polydual {
 
 namespace {
 
-constexpr const char* kNames[] = {"cube", "twomat", "fichera", "fracture", "network", "fins"};
+constexpr const char* kNames[] = {"cube", "twomat", "fichera", "fracture", "network", "fins", "layers", "dfn"};
 std::string name_of(Domain d) { return kNames[static_cast<int>(d)]; }
 
 // A failure whose message is already complete (the session's options).
@@ -97,7 +98,10 @@ class GmshSession {
   std::lock_guard<std::mutex> lock_;
 };
 
-double domain_volume(Domain d) {
+// The measure the element count scales with: the volume of a tet domain, the
+// area of the layers domain's cross-section (its extrusion has a fixed number
+// of layers) and the area of the fracture network.
+double domain_measure(Domain d) {
   switch (d) {
     case Domain::Cube: return 1.0;
     case Domain::TwoMat: return 2.0;
@@ -105,9 +109,14 @@ double domain_volume(Domain d) {
     case Domain::Fracture: return 1.0;
     case Domain::Network: return 1.0;
     case Domain::Fins: return 1.0;
+    case Domain::Layers: return 6.0 * 3.0 - M_PI * 0.25;
+    case Domain::Dfn: return 0.7 * 0.6 + 0.6 * 0.6 + 0.5 * 0.4;
   }
   return 1.0;
 }
+
+// The dimension the element count scales with (h^-k elements for size h).
+int count_exponent(Domain d) { return d == Domain::Layers || d == Domain::Dfn ? 2 : 3; }
 
 // Volume entity tag whose centre of mass is c (within 1e-9), or -1.
 int volume_at(double cx, double cy, double cz) {
@@ -139,36 +148,97 @@ std::vector<Sheet> fins_sheets() {
   return {{1, 0.5, 0.0, 0.4, 0.2, 0.8}, {2, 0.5, 0.6, 1.0, 0.2, 0.8}, {0, 0.5, 0.65, 1.0, 0.25, 0.75}};
 }
 
+// One sheet as an OCC rectangle in its plane; returns its surface tag.
+int add_sheet(const Sheet& s) {
+  namespace occ = gmsh::model::occ;
+  // addRectangle lies in z = const; rotate it into the sheet's plane.
+  if (s.axis == 2) return occ::addRectangle(s.lo0, s.lo1, s.at, s.hi0 - s.lo0, s.hi1 - s.lo1);
+  const int r = occ::addRectangle(s.lo0, s.lo1, 0, s.hi0 - s.lo0, s.hi1 - s.lo1);
+  if (s.axis == 1) {
+    // (x, z) rectangle: drawn in the xy plane at y=0 and rotated about x by +90
+    // degrees, which maps (x, y, 0) to (x, 0, y).
+    occ::rotate({{2, r}}, 0, 0, 0, 1, 0, 0, M_PI / 2);
+    occ::translate({{2, r}}, 0, s.at, 0);
+  } else {
+    // (y, z) rectangle: drawn as (y, z) in the xy plane, rotated about x (to
+    // (a, 0, b)) and then about z by +90 degrees (to (0, a, b)).
+    occ::rotate({{2, r}}, 0, 0, 0, 1, 0, 0, M_PI / 2);
+    occ::rotate({{2, r}}, 0, 0, 0, 0, 0, 1, M_PI / 2);
+    occ::translate({{2, r}}, s.at, 0, 0);
+  }
+  return r;
+}
+
 // Unit box fragmented by the sheets: the mesh becomes conformal to every sheet
 // and to their intersections, and the box stays one region.
 void embed_sheets(const std::vector<Sheet>& sheets) {
   namespace occ = gmsh::model::occ;
   const int box = occ::addBox(0, 0, 0, 1, 1, 1, 1);
   gmsh::vectorpair tools;
-  for (const Sheet& s : sheets) {
-    // addRectangle lies in z = const; rotate it into the sheet's plane.
-    int r = 0;
-    if (s.axis == 2) {
-      r = occ::addRectangle(s.lo0, s.lo1, s.at, s.hi0 - s.lo0, s.hi1 - s.lo1);
-    } else if (s.axis == 1) {
-      // (x, z) rectangle: draw in the xy plane at y=0 and rotate about x by +90
-      // degrees, which maps (x, y, 0) to (x, 0, y).
-      r = occ::addRectangle(s.lo0, s.lo1, 0, s.hi0 - s.lo0, s.hi1 - s.lo1);
-      occ::rotate({{2, r}}, 0, 0, 0, 1, 0, 0, M_PI / 2);
-      occ::translate({{2, r}}, 0, s.at, 0);
-    } else {
-      // (y, z) rectangle: draw as (y, z) in the xy plane, rotate about x (to
-      // (a, 0, b)) and then about z by +90 degrees (to (0, a, b)).
-      r = occ::addRectangle(s.lo0, s.lo1, 0, s.hi0 - s.lo0, s.hi1 - s.lo1);
-      occ::rotate({{2, r}}, 0, 0, 0, 1, 0, 0, M_PI / 2);
-      occ::rotate({{2, r}}, 0, 0, 0, 0, 0, 1, M_PI / 2);
-      occ::translate({{2, r}}, s.at, 0, 0);
-    }
-    tools.push_back({2, r});
-  }
+  for (const Sheet& s : sheets) tools.push_back({2, add_sheet(s)});
   gmsh::vectorpair out;
   std::vector<gmsh::vectorpair> out_map;
   occ::fragment({{3, box}}, tools, out, out_map);
+  occ::synchronize();
+}
+
+// The fracture network's sheets on their own (a surface mesh, as a
+// discrete-fracture-network code takes it): fragmented with each other, so
+// the triangles are conformal along the crossing lines.
+void sheets_alone(const std::vector<Sheet>& sheets) {
+  namespace occ = gmsh::model::occ;
+  gmsh::vectorpair objects, tools, out;
+  for (const Sheet& s : sheets) (objects.empty() ? objects : tools).push_back({2, add_sheet(s)});
+  std::vector<gmsh::vectorpair> out_map;
+  occ::fragment(objects, tools, out, out_map);
+  occ::synchronize();
+}
+
+// The layers domain: a channel [-2,4]x[-1.5,1.5] around a cylinder of radius
+// 0.5 at the origin, a 2D mesh with a quadrangle boundary layer on the
+// cylinder's wall (first layer kFirstLayer thick, ratio 1.3, about six
+// layers) extruded over kLayersDepth in kLayersNz recombined layers:
+// hexahedra in the wall layers, prisms elsewhere (a CFD boundary layer).
+constexpr double kFirstLayer = 0.01, kLayersDepth = 0.4;
+constexpr int kLayersNz = 4;
+constexpr int kWallSizeField = 2;  // the size field refined at the wall, per pass
+
+void channel_with_layers() {
+  namespace occ = gmsh::model::occ;
+  namespace field = gmsh::model::mesh::field;
+  const int rect = occ::addRectangle(-2, -1.5, 0, 6, 3);
+  const int disk = occ::addDisk(0, 0, 0, 0.5, 0.5);
+  gmsh::vectorpair out;
+  std::vector<gmsh::vectorpair> out_map;
+  occ::cut({{2, rect}}, {{2, disk}}, out, out_map);
+  occ::synchronize();
+  if (out.size() != 1) throw std::logic_error("layers: the channel minus the cylinder is not one surface");
+  const int surface = out[0].second;
+  gmsh::vectorpair curves;
+  gmsh::model::getBoundary(out, curves, false, false, false);
+  int wall = -1;
+  for (auto [dim, tag] : curves) {
+    double x, y, z;
+    occ::getCenterOfMass(dim, std::abs(tag), x, y, z);
+    if (std::abs(x) < 1e-9 && std::abs(y) < 1e-9) wall = std::abs(tag);
+  }
+  if (wall < 0) throw std::logic_error("layers: no cylinder wall among the channel's curves");
+  field::add("BoundaryLayer", 1);
+  field::setNumbers(1, "CurvesList", {double(wall)});
+  field::setNumber(1, "Size", kFirstLayer);
+  field::setNumber(1, "Ratio", 1.3);
+  field::setNumber(1, "Thickness", 8 * kFirstLayer);
+  field::setNumber(1, "Quads", 1);
+  field::setAsBoundaryLayer(1);
+  // Smaller cells near the wall: the sizes are set per pass (mesh_with_size).
+  field::add("Distance", 3);
+  field::setNumbers(3, "CurvesList", {double(wall)});
+  field::add("Threshold", kWallSizeField);
+  field::setNumber(kWallSizeField, "InField", 3);
+  field::setNumber(kWallSizeField, "DistMin", 0.1);
+  field::setNumber(kWallSizeField, "DistMax", 1.0);
+  field::setAsBackgroundMesh(kWallSizeField);
+  occ::extrude({{2, surface}}, 0, 0, kLayersDepth, out, {kLayersNz}, {}, true);
   occ::synchronize();
 }
 
@@ -183,6 +253,8 @@ std::size_t expected_surfaces(Domain d) {
     case Domain::Fracture: return 7;
     case Domain::Network: return 6 + 6;
     case Domain::Fins: return 6 + 3;
+    case Domain::Layers: return 7;  // bottom, top, four channel walls, the cylinder's
+    case Domain::Dfn: return 6;     // the network's sheet faces, without the box
   }
   return 0;
 }
@@ -230,11 +302,13 @@ void build_geometry(Domain d) {
     case Domain::Fins:
       embed_sheets(d == Domain::Network ? network_sheets() : fins_sheets());
       break;
+    case Domain::Layers: channel_with_layers(); break;
+    case Domain::Dfn: sheets_alone(network_sheets()); break;
   }
   gmsh::vectorpair vols, faces;
   gmsh::model::getEntities(vols, 3);
   gmsh::model::getEntities(faces, 2);
-  const std::size_t want_vols = d == Domain::TwoMat ? 2 : 1;
+  const std::size_t want_vols = d == Domain::TwoMat ? 2 : d == Domain::Dfn ? 0 : 1;
   const std::size_t want_faces = expected_surfaces(d);
   if (vols.size() != want_vols || faces.size() != want_faces)
     throw std::logic_error(name_of(d) + ": unexpected CAD topology (" +
@@ -249,43 +323,56 @@ void build_geometry(Domain d) {
   }
 }
 
-std::size_t count_tets() {
+// The elements of dimension count_dim (tets, or a layers domain's hexahedra
+// and prisms, or a surface domain's triangles).
+int count_dim(Domain d) { return d == Domain::Dfn ? 2 : 3; }
+
+std::size_t count_elements(Domain d) {
   std::vector<int> types;
   std::vector<std::vector<std::size_t>> tags, nodes;
-  gmsh::model::mesh::getElements(types, tags, nodes, 3, -1);
+  gmsh::model::mesh::getElements(types, tags, nodes, count_dim(d), -1);
   std::size_t n = 0;
-  for (std::size_t i = 0; i < types.size(); ++i)
-    if (types[i] == 4) n += tags[i].size();
+  for (const auto& t : tags) n += t.size();
   return n;
 }
 
-void mesh_with_size(double h) {
+void mesh_with_size(Domain d, double h) {
   gmsh::model::mesh::clear();
-  gmsh::option::setNumber("Mesh.MeshSizeMin", h);
+  // The layers domain grades from h/3 at the wall to h (its size field).
+  const double h_min = d == Domain::Layers ? h / 3 : h;
+  gmsh::option::setNumber("Mesh.MeshSizeMin", h_min);
   gmsh::option::setNumber("Mesh.MeshSizeMax", h);
-  gmsh::model::mesh::generate(3);
+  if (d == Domain::Layers) {
+    gmsh::model::mesh::field::setNumber(kWallSizeField, "SizeMin", h_min);
+    gmsh::model::mesh::field::setNumber(kWallSizeField, "SizeMax", h);
+  }
+  gmsh::model::mesh::generate(count_dim(d));
 }
 
-// Meshes the current model with about `target` tets. Delaunay meshes with a
-// uniform size h have about c·V/h^3 tets; c depends on the algorithm and, for
+// Meshes the current model with about `target` elements (count_elements).
+// Delaunay meshes with a uniform size h have about c·M/h^k elements (M the
+// domain's measure, k its count_exponent); c depends on the algorithm and, for
 // coarse meshes, on the boundary, and the count jumps whenever the number of
 // segments on a model edge changes. So: measure c on a trial of at most
-// kCalibrationTets, then search h (secant on log n against log h, bisection once
-// the target is bracketed) and keep the closest pass. Every step depends only
-// on (domain, target), so the result is deterministic.
+// kCalibration elements, then search h (secant on log n against log h,
+// bisection once the target is bracketed) and keep the closest pass. Every
+// step depends only on (domain, target), so the result is deterministic.
 void mesh_to_target(Domain d, std::size_t target) {
-  constexpr std::size_t kCalibrationTets = 20000;
-  constexpr double kInitialDensity = 7.0;  // tets per h^3, Gmsh Delaunay, measured
-  const double V = domain_volume(d);
+  constexpr std::size_t kCalibration = 20000;
+  // Elements per h^k, measured: Gmsh Delaunay tets; triangles of a Frontal-Delaunay
+  // surface; the layers domain's kLayersNz prisms per triangle.
+  const double initial_density = d == Domain::Dfn ? 2.3 : d == Domain::Layers ? 2.3 * kLayersNz : 7.0;
+  const double M = domain_measure(d), k = count_exponent(d);
   const double goal_n = static_cast<double>(target);
-  auto h_for = [V](double c, double n) { return std::cbrt(c * V / n); };
+  auto h_for = [M, k](double c, double n) { return std::pow(c * M / n, 1 / k); };
+  auto density = [M, k](double n, double h) { return n * std::pow(h, k) / M; };
 
   // Trial for big targets: its density extrapolates well (boundary share shrinks).
-  double c = kInitialDensity;
-  if (target > kCalibrationTets) {
-    const double h = h_for(c, kCalibrationTets);
-    mesh_with_size(h);
-    c = static_cast<double>(count_tets()) * h * h * h / V;
+  double c = initial_density;
+  if (target > kCalibration) {
+    const double h = h_for(c, kCalibration);
+    mesh_with_size(d, h);
+    c = density(static_cast<double>(count_elements(d)), h);
   }
   // Big meshes are costly to redo, so they get fewer passes and a looser
   // tolerance (the trial's density extrapolates to within ~10% there).
@@ -293,19 +380,19 @@ void mesh_to_target(Domain d, std::size_t target) {
   const int max_passes = big ? 2 : 8;
   const double tolerance = std::log(big ? 1.15 : 1.05);
   double best_h = 0, best_err = std::numeric_limits<double>::infinity();
-  double lo_h = 0, hi_h = 0;  // h giving too many tets (small h) / too few (large h)
+  double lo_h = 0, hi_h = 0;  // h giving too many elements (small h) / too few (large h)
   double h = h_for(c, goal_n);
   double last_h = 0;
   for (int pass = 0; pass < max_passes; ++pass) {
-    mesh_with_size(h);
+    mesh_with_size(d, h);
     last_h = h;
-    const double n = static_cast<double>(count_tets());
-    if (n == 0) throw std::runtime_error(name_of(d) + ": gmsh produced no tetrahedra");
+    const double n = static_cast<double>(count_elements(d));
+    if (n == 0) throw std::runtime_error(name_of(d) + ": gmsh produced no elements");
     const double err = std::abs(std::log(n / goal_n));
     if (err < best_err) best_err = err, best_h = h;
     if (best_err <= tolerance) break;
     if (n > goal_n) lo_h = h; else hi_h = h;
-    c = n * h * h * h / V;
+    c = density(n, h);
     double next = h_for(c, goal_n);
     // Once bracketed, stay strictly inside the bracket (the count is a step
     // function of h at coarse sizes, so the secant alone can cycle).
@@ -313,7 +400,7 @@ void mesh_to_target(Domain d, std::size_t target) {
       next = std::sqrt(lo_h * hi_h);
     h = next;
   }
-  if (last_h != best_h) mesh_with_size(best_h);
+  if (last_h != best_h) mesh_with_size(d, best_h);
 }
 
 // The mesh as Gmsh holds it: all nodes, and the elements of every entity of
@@ -339,6 +426,81 @@ void extract_raw(gmsh_module::RawMesh& out) {
   }
 }
 
+// Renumbers the current mesh canonically: nodes by their coordinates,
+// elements per (entity, type) by their nodes' new numbers (their node order
+// kept). Gmsh's 2D boundary layers number the same mesh differently from run
+// to run (measured: identical nodes and elements, node tags permuted), and
+// the same domain must give the same file.
+void canonical_numbering() {
+  namespace mesh = gmsh::model::mesh;
+  gmsh::vectorpair entities;
+  gmsh::model::getEntities(entities);
+  std::sort(entities.begin(), entities.end());
+  struct Nodes {
+    std::vector<std::size_t> tags;
+    std::vector<double> coord, param;
+  };
+  std::vector<Nodes> nodes(entities.size());
+  std::vector<std::pair<std::array<double, 3>, std::size_t>> order;
+  for (std::size_t e = 0; e < entities.size(); ++e) {
+    Nodes& n = nodes[e];
+    mesh::getNodes(n.tags, n.coord, n.param, entities[e].first, entities[e].second, false, true);
+    for (std::size_t i = 0; i < n.tags.size(); ++i)
+      order.push_back({{n.coord[3 * i], n.coord[3 * i + 1], n.coord[3 * i + 2]}, n.tags[i]});
+  }
+  std::sort(order.begin(), order.end());
+  std::size_t max_tag = 0;
+  for (const auto& o : order) max_tag = std::max(max_tag, o.second);
+  std::vector<std::size_t> renumbered(max_tag + 1, 0);
+  for (std::size_t i = 0; i < order.size(); ++i) renumbered[order[i].second] = i + 1;
+  struct Block {
+    int tag, type;
+    std::vector<std::vector<std::size_t>> elements;
+  };
+  std::vector<Block> blocks;
+  for (auto [dim, tag] : entities) {
+    std::vector<int> types;
+    std::vector<std::vector<std::size_t>> etags, enodes;
+    mesh::getElements(types, etags, enodes, dim, tag);
+    for (std::size_t t = 0; t < types.size(); ++t) {
+      Block b{tag, types[t], {}};
+      const std::size_t per = etags[t].empty() ? 0 : enodes[t].size() / etags[t].size();
+      for (std::size_t k = 0; k < etags[t].size(); ++k) {
+        std::vector<std::size_t> v(enodes[t].begin() + std::ptrdiff_t(k * per), enodes[t].begin() + std::ptrdiff_t((k + 1) * per));
+        for (std::size_t& x : v) x = renumbered[x];
+        b.elements.push_back(std::move(v));
+      }
+      std::sort(b.elements.begin(), b.elements.end());
+      blocks.push_back(std::move(b));
+    }
+  }
+  mesh::clear();
+  for (std::size_t e = 0; e < entities.size(); ++e) {
+    const Nodes& n = nodes[e];
+    const std::size_t count = n.tags.size(), pdim = count ? n.param.size() / count : 0;
+    std::vector<std::size_t> at(count);
+    for (std::size_t i = 0; i < count; ++i) at[i] = i;
+    std::sort(at.begin(), at.end(), [&](std::size_t a, std::size_t b) { return renumbered[n.tags[a]] < renumbered[n.tags[b]]; });
+    std::vector<std::size_t> tags;
+    std::vector<double> coord, param;
+    for (std::size_t i : at) {
+      tags.push_back(renumbered[n.tags[i]]);
+      coord.insert(coord.end(), n.coord.begin() + std::ptrdiff_t(3 * i), n.coord.begin() + std::ptrdiff_t(3 * i + 3));
+      param.insert(param.end(), n.param.begin() + std::ptrdiff_t(pdim * i), n.param.begin() + std::ptrdiff_t(pdim * (i + 1)));
+    }
+    mesh::addNodes(entities[e].first, entities[e].second, tags, coord, param);
+  }
+  std::size_t next = 1;
+  for (const Block& b : blocks) {
+    std::vector<std::size_t> etags, enodes;
+    for (const auto& v : b.elements) {
+      etags.push_back(next++);
+      enodes.insert(enodes.end(), v.begin(), v.end());
+    }
+    mesh::addElementsByType(b.tag, b.type, etags, enodes);
+  }
+}
+
 bool valid_domain(int domain, std::string& error) {
   if (domain >= 0 && domain < gmsh_module::kNumDomains) return true;
   error = "unknown domain number " + std::to_string(domain);
@@ -348,6 +510,10 @@ bool valid_domain(int domain, std::string& error) {
 bool mesh_entry(int domain, std::size_t target, gmsh_module::RawMesh& out, std::string& error) {
   if (!valid_domain(domain, error)) return false;
   const auto d = static_cast<Domain>(domain);
+  if (d == Domain::Layers || d == Domain::Dfn) {
+    error = name_of(d) + " is not a tet mesh: only its .msh file is written (write_msh)";
+    return false;
+  }
   try {
     GmshSession session;
     build_geometry(d);
@@ -367,6 +533,7 @@ bool write_msh_entry(int domain, std::size_t target, const char* path, std::stri
     GmshSession session;
     build_geometry(d);
     mesh_to_target(d, target);
+    if (d == Domain::Layers) canonical_numbering();
     // SaveAll: without physical groups Gmsh writes everything anyway, but the
     // option makes that explicit and survives a later physical group.
     gmsh::option::setNumber("Mesh.SaveAll", 1);

@@ -16,10 +16,10 @@
 namespace polydual::gmsh_module {
 
 // Bump whenever GmshApi, RawMesh or the meaning of a domain number changes.
-inline constexpr int kAbiVersion = 2;
+inline constexpr int kAbiVersion = 3;
 
 // The domains by number (generate/domains.h's Domain, in its order).
-inline constexpr int kNumDomains = 6;
+inline constexpr int kNumDomains = 8;
 
 // A Gmsh mesh as Gmsh gives it: nodes with their tags and coordinates, and
 // the elements of each model entity, entities sorted by (dim, tag).
@@ -38,7 +38,8 @@ struct RawMesh {
 // message in `error` (what Gmsh or the CAD check reported).
 struct GmshApi {
   int abi_version;
-  // Meshes domain number `domain` with about `target_tets` tets.
+  // Meshes domain number `domain` with about `target_tets` tets (tet domains
+  // only: the layers and dfn domains are refused with a message).
   bool (*mesh)(int domain, std::size_t target_tets, RawMesh& out, std::string& error);
   // The same mesh written by Gmsh's msh 4.1 ASCII writer to `path` (which
   // must end in ".msh": Gmsh picks the format from the extension).

@@ -171,7 +171,8 @@ void add_unattached(TetSoup& soup, bool with_sheet_part) {
 }  // namespace
 
 TetSoup random_classified_mesh(const RandomMeshParams& params) {
-  if (params.num_points < 0) throw UsageError("random mesh: num_points must be >= 0");
+  if (params.num_points < 0 || params.face_points < 0)
+    throw UsageError("random mesh: num_points and face_points must be >= 0");
   if (params.regions != 1 && params.regions != 2)
     throw UsageError("random mesh: regions must be 1 or 2");
   if (params.notch && params.touching)
@@ -196,6 +197,12 @@ TetSoup random_classified_mesh(const RandomMeshParams& params) {
       for (int c = 0; c < 3; ++c) p[c] = std::floor(p[c] * 9.0) / 8.0;  // 0, 1/8, ..., 1
     input.push_back(p);
   }
+  for (int f = 0; f < 6; ++f)
+    for (int i = 0; i < params.face_points; ++i) {
+      Point3 p{open_unit(rng()), open_unit(rng()), open_unit(rng())};
+      p[f / 2] = f % 2 ? 1.0 : 0.0;
+      input.push_back(p);
+    }
 
   // One insertion at a time, in input order: CGAL's range insert spatially
   // sorts with a randomised algorithm, and we want ids = first-insertion order.

@@ -14,6 +14,10 @@ struct RandomMeshParams {
   std::uint64_t seed = 0;
   // Random points strictly inside the unit box, added to its 8 corners.
   int num_points = 60;
+  // Random points on each of the box's six faces (strictly inside the face),
+  // drawn after the inner points: boundary triangles smaller than the box's
+  // faces (the prism layers of generate/random_mixed.h grow on them).
+  int face_points = 0;
   // 1: one region (tag 1). 2: tets with centroid x < 0.5 get tag 1, others 2 —
   // a jagged material interface.
   int regions = 1;

@@ -51,6 +51,14 @@ Json area_json(const SurfaceAreaIdentity& a) {
 
 }  // namespace
 
+SurfaceConvertParams surface_params(const PipelineParams& params) {
+  SurfaceConvertParams sp;
+  const auto method = params.optim.method;
+  if (method == OptimParams::Method::None || method == OptimParams::Method::Untangle) sp.smooth.sweeps = 0;
+  sp.require_valid = params.split.require_valid;
+  return sp;
+}
+
 bool is_surface_soup(const TetSoup& soup) {
   return soup.tets.empty() && soup.other_cells.empty() && !(soup.triangles.empty() && soup.quads.empty());
 }

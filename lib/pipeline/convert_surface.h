@@ -40,6 +40,11 @@ struct SurfaceConvertParams {
   bool require_valid = false;
 };
 
+// The surface pipeline's parameters that follow a volume run's: smoothing
+// unless the optimiser is off or only untangles (the dual points then stay
+// where Algorithm 1 puts them), and --require-valid.
+SurfaceConvertParams surface_params(const PipelineParams& params);
+
 // Whether a soup is a surface mesh: no volume cell, some triangle or quadrangle.
 bool is_surface_soup(const TetSoup& soup);
 

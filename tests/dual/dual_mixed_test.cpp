@@ -14,6 +14,7 @@
 #include "dual/build_dual.h"
 #include "dual/primal_dual.h"
 #include "generate/random_mesh.h"
+#include "generate/random_mixed.h"
 #include "mesh/cell_soup.h"
 #include "mesh/model_facets.h"
 #include "mesh/validate.h"
@@ -132,62 +133,8 @@ TEST(DualMixed, SameDualAsTheTetBuilderOnRandomMeshes) {
       }
 }
 
-
-// --- structured mixed meshes of the unit box (n cells a side, h = 1/n)
-
-// Adds a volume cell, its local vertices swapped to its mirror image when
-// its first corner tet is negative (double: these grids are well shaped).
-void add_cell(TetSoup& s, CellType t, std::vector<std::uint32_t> v, std::int32_t region) {
-  const CellDescriptor& d = descriptor(t);
-  const auto& c = d.corners[0];
-  const Point3 &a = s.points[v[c[0]]], &b = s.points[v[c[1]]], &e = s.points[v[c[2]]], &f = s.points[v[c[3]]];
-  if (dot(b - a, cross(e - a, f - a)) < 0) {
-    std::vector<std::uint32_t> w(v.size());
-    for (std::size_t k = 0; k < v.size(); ++k) w[k] = v[std::size_t(d.mirror[k])];
-    v = w;
-  }
-  if (t == CellType::Tet) {
-    s.tets.push_back({v[0], v[1], v[2], v[3]});
-    s.tet_region.push_back(region);
-    return;
-  }
-  SoupCell c2;
-  c2.type = t;
-  std::copy(v.begin(), v.end(), c2.v.begin());
-  c2.region = region;
-  s.other_cells.push_back(c2);
-}
-
-// Tags every boundary face with its side of the box (1..6: -x, +x, -y, +y,
-// -z, +z), so that build_primal finds the box's 12 model edges and 8 corners.
-void tag_box_boundary(TetSoup& s) {
-  std::map<std::vector<std::uint32_t>, std::pair<int, std::vector<std::uint32_t>>> faces;
-  auto visit = [&](CellType t, const std::uint32_t* v) {
-    const CellDescriptor& d = descriptor(t);
-    for (int i = 0; i < d.num_faces; ++i) {
-      std::vector<std::uint32_t> loop;
-      for (int k = 0; k < d.face_size[i]; ++k) loop.push_back(v[d.faces[i][k]]);
-      auto key = loop;
-      std::sort(key.begin(), key.end());
-      auto& e = faces[key];
-      ++e.first;
-      e.second = loop;
-    }
-  };
-  for (const auto& t : s.tets) visit(CellType::Tet, t.data());
-  for (const SoupCell& c : s.other_cells) visit(c.type, c.v.data());
-  for (const auto& [key, e] : faces) {
-    if (e.first != 1) continue;
-    int side = 0;
-    for (int d = 0; d < 3 && !side; ++d)
-      for (double x : {0.0, 1.0})
-        if (std::all_of(key.begin(), key.end(), [&](std::uint32_t v) { return s.points[v][d] == x; }))
-          side = 2 * d + (x == 1.0) + 1;
-    const auto& l = e.second;
-    if (l.size() == 3) s.triangles.push_back({{l[0], l[1], l[2]}, side});
-    else s.quads.push_back({{l[0], l[1], l[2], l[3]}, side});
-  }
-}
+// --- structured mixed meshes of the unit box (n cells a side, h = 1/n;
+// add_cell and tag_box_boundary from generate/random_mixed.h)
 
 struct Grid {
   int n;
@@ -215,7 +162,7 @@ TetSoup hex_block_soup(int n) {
   for (int k = 0; k < n; ++k)
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) add_cell(s, CellType::Hex, cube(g, i, j, k), 2 * i < n ? 1 : 2);
-  tag_box_boundary(s);
+  tag_box_boundary(s, 0, 1);
   return s;
 }
 
@@ -254,41 +201,13 @@ TetSoup prism_layer_soup(int n) {
           }
           add_cell(s, CellType::Tet, {q[0], q[4], q[5], q[3]}, 2);
         }
-  tag_box_boundary(s);
+  tag_box_boundary(s, 0, 1);
   return s;
 }
 
-// Hexahedra below z = 1/2, tets above, joined through pyramids: each cube of
-// the layer above the hexahedra is cut from its centre into a pyramid on its
-// bottom quadrangle (the hexahedron's top) and two tets on each other face,
-// the cubes above into twelve tets; every quadrangle between tets splits
-// along the diagonal from its smallest vertex (neighbours agree). n even.
-TetSoup hex_pyramid_tet_soup(int n) {
-  TetSoup s = grid_points(n);
-  const Grid g{n};
-  constexpr int kFaces[6][4] = {{0, 1, 2, 3}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        const auto c = cube(g, i, j, k);
-        if (2 * k < n) { add_cell(s, CellType::Hex, c, 1); continue; }
-        const std::uint32_t m = std::uint32_t(s.points.size());
-        s.points.push_back({(i + 0.5) / n, (j + 0.5) / n, (k + 0.5) / n});
-        for (int f = 0; f < 6; ++f) {
-          const std::uint32_t a = c[kFaces[f][0]], b = c[kFaces[f][1]], cc = c[kFaces[f][2]], d = c[kFaces[f][3]];
-          if (f == 0 && 2 * k == n) { add_cell(s, CellType::Pyramid, {a, b, cc, d, m}, 2); continue; }
-          if (std::min(a, cc) < std::min(b, d)) {
-            add_cell(s, CellType::Tet, {a, b, cc, m}, 2);
-            add_cell(s, CellType::Tet, {a, cc, d, m}, 2);
-          } else {
-            add_cell(s, CellType::Tet, {a, b, d, m}, 2);
-            add_cell(s, CellType::Tet, {b, cc, d, m}, 2);
-          }
-        }
-      }
-  tag_box_boundary(s);
-  return s;
-}
+// Hexahedra below z = 1/2, tets above, joined through pyramids, unjittered
+// (generate/random_mixed.h).
+TetSoup hex_pyramid_tet_soup(int n) { return random_hex_pyramid_tets(0, n, 0.0); }
 
 // Closed cells, sound faces, every cell star-shaped by the exact test (after
 // the default optimiser on the primal's model facets when `optimise`), and

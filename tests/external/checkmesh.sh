@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Slow external check (design §9): OpenFOAM's own checkMesh accepts the polyMesh
-# that `polydual convert --format foam` writes for every demo domain.
+# that `polydual convert --format foam` writes for every volume demo domain
+# (the tet domains and the boundary layers of hexahedra and prisms).
 # Topology failures and missing zones fail the test; the geometry results are
 # recorded in SCRATCH_DIR/<domain>_checkMesh.log and summarised, not judged.
 # usage: checkmesh.sh POLYDUAL_BINARY SCRATCH_DIR
@@ -18,7 +19,7 @@ fi
 export WM_PROJECT_DIR=/usr/share/openfoam
 
 status=0
-for d in cube twomat fichera fracture network fins; do
+for d in cube twomat fichera fracture network fins layers; do
   case_dir="$out/${d}_case"
   log="$out/${d}_checkMesh.log"
   rm -rf "$case_dir" "$log"

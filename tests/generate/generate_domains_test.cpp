@@ -13,6 +13,9 @@
 
 #include "classify/classify.h"
 #include "core/error.h"
+#include "io/read_any_mesh.h"
+#include "mesh/cell_types.h"
+#include "pipeline/convert_surface.h"
 #include "predicates/predicates.h"
 
 namespace polydual {
@@ -20,6 +23,7 @@ namespace {
 
 constexpr Domain kAll[] = {Domain::Cube,     Domain::TwoMat,  Domain::Fichera,
                            Domain::Fracture, Domain::Network, Domain::Fins};
+constexpr Domain kNotTets[] = {Domain::Layers, Domain::Dfn};
 
 bool same_soup(const TetSoup& a, const TetSoup& b) {
   auto tri_eq = [](const TaggedTriangle& x, const TaggedTriangle& y) {
@@ -51,6 +55,7 @@ std::string read_all(const std::filesystem::path& p) {
 
 TEST(GenerateDomains, NamesRoundTrip) {
   for (Domain d : kAll) EXPECT_EQ(parse_domain(domain_name(d)), d);
+  for (Domain d : kNotTets) EXPECT_EQ(parse_domain(domain_name(d)), d);
   try {
     parse_domain("sphere");
     FAIL() << "no UsageError";
@@ -229,6 +234,41 @@ TEST(GenerateDomains, MshWriterIsAtomicAndDeterministic) {
   EXPECT_NE(sa.find("$Entities"), std::string::npos);
   // Only the two outputs remain: no temporaries left behind.
   EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 2);
+  std::filesystem::remove_all(dir);
+}
+
+// The mixed and surface domains exist as Gmsh files only: generate_domain
+// refuses them by name; their .msh holds the promised cells, about as many as
+// asked, and is the same file twice.
+TEST(GenerateDomains, LayersAndDfnAreWrittenAsMshOnly) {
+  const auto dir = std::filesystem::temp_directory_path() / ("polydual_gen_mixed_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  for (Domain d : kNotTets) {
+    try {
+      generate_domain(d, 2000);
+      ADD_FAILURE() << domain_name(d) << ": no UsageError";
+    } catch (const UsageError& e) {
+      EXPECT_NE(std::string(e.what()).find(domain_name(d)), std::string::npos) << e.what();
+    }
+    const auto a = dir / (domain_name(d) + "_a.msh"), b = dir / (domain_name(d) + "_b.msh");
+    write_domain_msh(d, 2000, a.string());
+    write_domain_msh(d, 2000, b.string());
+    EXPECT_TRUE(read_all(a) == read_all(b)) << domain_name(d) << ": two runs wrote different files";
+    const TetSoup soup = read_any_mesh(a.string());
+    const auto counts = mixed_cell_counts(soup);
+    EXPECT_EQ(soup.tets.size(), 0u) << domain_name(d);
+    if (d == Domain::Layers) {
+      const std::size_t hexes = counts[std::size_t(CellType::Hex)], prisms = counts[std::size_t(CellType::Prism)];
+      EXPECT_GT(hexes, 0u) << "the wall layers";
+      EXPECT_GT(prisms, hexes);
+      EXPECT_GE(double(hexes + prisms), 0.7 * 2000);
+      EXPECT_LE(double(hexes + prisms), 1.3 * 2000);
+    } else {
+      EXPECT_TRUE(is_surface_soup(soup));
+      EXPECT_GE(double(soup.triangles.size()), 0.7 * 2000);
+      EXPECT_LE(double(soup.triangles.size()), 1.3 * 2000);
+    }
+  }
   std::filesystem::remove_all(dir);
 }
 
