@@ -364,8 +364,9 @@ void mesh_to_target(Domain d, std::size_t target) {
   const double initial_density = d == Domain::Dfn ? 2.3 : d == Domain::Layers ? 2.3 * kLayersNz : 7.0;
   const double M = domain_measure(d), k = count_exponent(d);
   const double goal_n = static_cast<double>(target);
-  auto h_for = [M, k](double c, double n) { return std::pow(c * M / n, 1 / k); };
-  auto density = [M, k](double n, double h) { return n * std::pow(h, k) / M; };
+  // cbrt and h*h*h for volumes: the tet domains' sizes, bit for bit as before.
+  auto h_for = [M, k](double c, double n) { return k == 3 ? std::cbrt(c * M / n) : std::sqrt(c * M / n); };
+  auto density = [M, k](double n, double h) { return k == 3 ? n * h * h * h / M : n * h * h / M; };
 
   // Trial for big targets: its density extrapolates well (boundary share shrinks).
   double c = initial_density;
