@@ -101,7 +101,7 @@ int info_mixed(const Settings& s, const TetSoup& soup, Json seconds) {
     std::printf("%s: a %s mesh: %s; %zu vertices, %zu faces, %zu edges (conformal%s)\n",
                 s.positional[0].c_str(), m.dim() == 3 ? "mixed" : "surface", describe_cell_counts(counts).c_str(),
                 m.num_vertices(), m.num_faces(), m.num_edges(), m.dim() == 3 ? ", every cell positively oriented" : "");
-    std::printf(m.dim() == 3 ? "  `convert` makes its dual (no split: the split works on tet meshes only)\n"
+    std::printf(m.dim() == 3 ? "  `convert` makes its dual\n"
                              : "  `convert` builds its surface dual (polygons, VTU)\n");
   }
   return 0;

@@ -114,7 +114,13 @@ bool cap_loop(const MixedPoints& d, VertexId v, std::span<const PrimalFaceId> L,
   const auto& seq = runs.seq;
   loop.clear();
   if (!closed) loop.push_back(d.edge_pt[runs.edge_to(seq.front().k, seq.front().p).idx]);
-  for (const Runs::Oriented& o : seq) loop.push_back(d.face_pt[L[o.k].idx]);
+  for (std::size_t i = 0; i < seq.size(); ++i) {
+    loop.push_back(d.face_pt[L[seq[i].k].idx]);
+    // An edge inside the run with a point (to a vertex cut whole): the
+    // neighbouring corners' walls end there.
+    if (i + 1 < seq.size() || closed)
+      if (const PointId e = d.edge_pt[runs.edge_to(seq[i].k, seq[i].q).idx]; e.valid()) loop.push_back(e);
+  }
   if (closed) return false;
   if (seq.front().p == seq.back().q) return true;
   loop.push_back(d.edge_pt[runs.edge_to(seq.back().k, seq.back().q).idx]);
@@ -194,11 +200,42 @@ FaceKind kind_of(const std::vector<std::pair<std::int32_t, FaceKind>>& kinds, st
   return it->second;
 }
 
+// The walls of the corners of a vertex v cut whole: per face through v, the
+// tile (v, mid(v A), centre, mid(v B)) in the face's outward order (A after
+// v in its loop, B before), between the corners of its two cells (one on the
+// boundary).
+void whole_tiles(const PrimalMesh& m, const PrimalSides& sides, const MixedPoints& d,
+                 const std::vector<std::pair<std::int32_t, FaceKind>>& kinds, VertexId v, PolyMesh& pm) {
+  std::vector<PrimalFaceId> faces;
+  for (PrimalCellId c : m.vertex_cells(v)) {
+    const CellDescriptor& desc = m.cell_descriptor(c);
+    for (int i = 0; i < desc.num_faces; ++i) {
+      const PrimalFaceId f = m.cell_face(c, i);
+      const auto fv = m.face_vertices(f);
+      if (std::find(fv.begin(), fv.end(), v) != fv.end() && m.face_cell(f, 0) == c) faces.push_back(f);
+    }
+  }
+  std::sort(faces.begin(), faces.end());
+  for (PrimalFaceId f : faces) {
+    const auto fv = m.face_vertices(f);
+    const std::size_t s = fv.size(), i = std::size_t(std::find(fv.begin(), fv.end(), v) - fv.begin());
+    const PointId a = d.edge_pt[m.find_edge(v, fv[(i + 1) % s]).idx], b = d.edge_pt[m.find_edge(v, fv[(i + s - 1) % s]).idx];
+    const PrimalCellId c0 = m.face_cell(f, 0), c1 = m.face_cell(f, 1);
+    const CellId owner = sides.cell(m, c0, v), neigh = c1.valid() ? sides.cell(m, c1, v) : CellId::invalid();
+    const bool model = m.face_class(f).dim == 2;
+    const std::int32_t tag = model ? m.face_class(f).tag : 0;
+    const PointId tile[4] = {d.vert_pt[v.idx], a, d.face_pt[f.idx], b};
+    pm.add_face(tile, owner, neigh, model ? kind_of(kinds, tag) : FaceKind::Interior, tag);
+  }
+}
+
 }  // namespace
 
 void make_primal_caps(const PrimalMesh& m, const PrimalSides& sides, const MixedPoints& d,
                       const std::vector<std::pair<std::int32_t, FaceKind>>& kinds, bool keep, PolyMesh& pm,
                       DualStats& st) {
+  for (std::size_t vi = 0; vi < m.num_vertices(); ++vi)
+    if (d.is_whole(VertexId(vi))) whole_tiles(m, sides, d, kinds, VertexId(vi), pm);
   const VertexFaces vf = vertex_model_faces(m);
   Runs runs;
   std::vector<PointId> loop;
@@ -206,7 +243,7 @@ void make_primal_caps(const PrimalMesh& m, const PrimalSides& sides, const Mixed
   for (std::size_t vi = 0; vi < m.num_vertices(); ++vi) {
     const VertexId v(vi);
     const auto L = vf.of(vi);
-    if (L.empty()) continue;
+    if (L.empty() || d.is_whole(v)) continue;
     runs.load(m, v, L);
     const bool touch = touch_vertex(m, d, v, runs);
     for (std::uint32_t i0 = 0; i0 < runs.n; ++i0) {

@@ -21,6 +21,11 @@ struct MixedPoints {
   // -inf otherwise (no tolerance admits it in the coincidence test).
   std::vector<double> cell_error;
   std::vector<char> face_merge;  // per face: a well-centred model-face triangle (caps mode)
+  // Per vertex: cut whole (the mixed split); empty: none. Every face and
+  // edge through such a vertex has a point (its vertex mean, its midpoint),
+  // and so has the vertex.
+  std::vector<char> whole;
+  bool is_whole(VertexId v) const { return !whole.empty() && whole[v.idx]; }
 };
 
 // A face's place in the order (owner cell, local face): on a tet mesh the
@@ -30,7 +35,9 @@ struct MixedPoints {
 std::uint64_t owner_order(const PrimalMesh& m, PrimalFaceId f);
 
 // Appends the caps (keep: the tiles of the model faces) of every vertex on a
-// model face; kinds: primal_face_kinds(m).
+// model face that is not cut whole, and the tiles (v, mid, centre, mid) of
+// every face through a vertex cut whole (its corners' walls, design §14);
+// kinds: primal_face_kinds(m).
 void make_primal_caps(const PrimalMesh& m, const PrimalSides& sides, const MixedPoints& d,
                       const std::vector<std::pair<std::int32_t, FaceKind>>& kinds, bool keep, PolyMesh& pm,
                       DualStats& st);

@@ -4,6 +4,7 @@
 #include "dual/primal_dual.h"
 
 #include <algorithm>
+#include <span>
 #include <array>
 #include <chrono>
 #include <limits>
@@ -27,11 +28,27 @@ double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock:
 // Whether edge e / vertex v gets a dual point: on a model edge / at a model
 // vertex (the paper), and in keep mode on every model entity (classified in
 // dimension <= 2): the rule of build_dual.cpp without cuts.
-bool edge_has_point(const PrimalMesh& m, bool keep, EdgeId e) {
-  return m.edge_class(e).dim == 1 || (keep && m.edge_class(e).dim <= 2);
+// A vertex cut whole gives a point to itself and to every edge through it.
+bool edge_has_point(const PrimalMesh& m, bool keep, const MixedPoints& d, EdgeId e) {
+  return m.edge_class(e).dim == 1 || (keep && m.edge_class(e).dim <= 2) || d.is_whole(m.edge(e)[0]) ||
+         d.is_whole(m.edge(e)[1]);
 }
-bool vertex_has_point(const PrimalMesh& m, bool keep, VertexId v) {
-  return m.vertex_class(v).dim == 0 || (keep && m.vertex_class(v).dim <= 2);
+bool vertex_has_point(const PrimalMesh& m, bool keep, const MixedPoints& d, VertexId v) {
+  return m.vertex_class(v).dim == 0 || (keep && m.vertex_class(v).dim <= 2) || d.is_whole(v);
+}
+// Whether a face / cell has a vertex cut whole: its central point is then
+// its vertex mean (a corner of the cell between its vertex, the midpoints
+// and the faces' and cell's vertex means is convex for a tet, and for any
+// cell whose faces are planar and which is convex: the barycentric corner).
+bool touches_whole(const MixedPoints& d, std::span<const VertexId> vs) {
+  for (VertexId v : vs)
+    if (d.is_whole(v)) return true;
+  return false;
+}
+Point3 mean_of(const PrimalMesh& m, std::span<const VertexId> vs) {
+  Point3 p{0, 0, 0};
+  for (VertexId v : vs) p = p + m.point(v);
+  return p * (1.0 / double(vs.size()));
 }
 
 // The model faces' central points, in owner_order (primal_caps.h): keep
@@ -47,6 +64,10 @@ void add_face_points(const PrimalMesh& m, bool keep, MixedPoints& d, DualStats& 
   std::sort(model_faces.begin(), model_faces.end());
   for (const auto& [order, fid] : model_faces) {
     const auto fv = m.face_vertices(fid);
+    if (touches_whole(d, fv)) {  // a face through a vertex cut whole: its vertex mean
+      d.face_pt[fid.idx] = add(mean_of(m, fv), m.face_class(fid), 2, fid.idx);
+      continue;
+    }
     const bool tri = fv.size() == 3;
     bool opposite[3] = {false, false, false};  // the caps' rule (cap_triangle_point)
     for (int k = 0; tri && k < 3; ++k)
@@ -58,6 +79,12 @@ void add_face_points(const PrimalMesh& m, bool keep, MixedPoints& d, DualStats& 
     d.face_merge[fid.idx] = char(tri && c.well_centred && !keep);
     if (tri) ++(c.well_centred ? st.well_centred_triangles : st.clamped_triangles);
   }
+  if (d.whole.empty()) return;
+  for (std::size_t f = 0; f < m.num_faces(); ++f) {  // the other faces through a vertex cut whole
+    const PrimalFaceId fid(f);
+    const auto fv = m.face_vertices(fid);
+    if (!d.face_pt[f].valid() && touches_whole(d, fv)) d.face_pt[f] = add(mean_of(m, fv), m.face_class(fid), 2, f);
+  }
 }
 
 // STEP 1-4. Cell centres get PointId == PrimalCellId; then the model faces'
@@ -66,8 +93,10 @@ void add_face_points(const PrimalMesh& m, bool keep, MixedPoints& d, DualStats& 
 // midpoints, the vertices. Central points are rounded constructions; whether
 // a tet or triangle holds its circumcentre is decided EXACTLY
 // (central_points.h), and only such centres may merge (cleanup hints).
-MixedPoints make_points(const PrimalMesh& m, bool keep, PolyMesh& pm, DualStats& st) {
+MixedPoints make_points(const PrimalMesh& m, bool keep, const std::vector<char>* whole, PolyMesh& pm,
+                        DualStats& st) {
   MixedPoints d;
+  if (whole) d.whole = *whole;
   const std::size_t nc = m.num_cells();
   pm.points.resize(nc);
   pm.point_class.resize(nc);
@@ -84,7 +113,9 @@ MixedPoints make_points(const PrimalMesh& m, bool keep, PolyMesh& pm, DualStats&
       const PrimalCellId cid(c);
       const bool tet = m.cell_type(cid) == CellType::Tet;
       CentralPoint cp{{0, 0, 0}, false, 0};
-      if (tet || m.cell_type(cid) == CellType::Prism) {
+      if (touches_whole(d, m.cell_vertices(cid))) {
+        cp.p = mean_of(m, m.cell_vertices(cid));
+      } else if (tet || m.cell_type(cid) == CellType::Prism) {
         cp = cell_central_point(m, cid);
       } else {
         const auto cv = m.cell_vertices(cid);
@@ -108,13 +139,13 @@ MixedPoints make_points(const PrimalMesh& m, bool keep, PolyMesh& pm, DualStats&
   add_face_points(m, keep, d, st, add);
   d.edge_pt.assign(m.num_edges(), PointId::invalid());
   for (std::size_t e = 0; e < m.num_edges(); ++e)
-    if (edge_has_point(m, keep, EdgeId(e))) {
+    if (edge_has_point(m, keep, d, EdgeId(e))) {
       const auto ev = m.edge(EdgeId(e));
       d.edge_pt[e] = add(0.5 * (m.point(ev[0]) + m.point(ev[1])), m.edge_class(EdgeId(e)), 1, e);
     }
   d.vert_pt.assign(m.num_vertices(), PointId::invalid());
   for (std::size_t v = 0; v < m.num_vertices(); ++v)
-    if (vertex_has_point(m, keep, VertexId(v)))
+    if (vertex_has_point(m, keep, d, VertexId(v)))
       d.vert_pt[v] = add(m.point(VertexId(v)), m.vertex_class(VertexId(v)), 0, v);
   return d;
 }
@@ -210,15 +241,23 @@ void chain_faces(const PrimalMesh& m, const PrimalSides& sides, const MixedPoint
                  std::vector<PointId>& loop) {
   const VertexId a = m.edge(e)[0], b = m.edge(e)[1];  // not a structured binding: the lambda below captures them
   const std::size_t n = ch.cells.size();
+  // An edge through a vertex cut whole is cut at every face (one face per
+  // corner); another passes through the points of the faces between its
+  // cells that have one (faces through a vertex cut whole).
+  const bool whole = d.is_whole(a) || d.is_whole(b);
   cuts.clear();
   for (std::size_t k = 0; k < n; ++k)
-    if (m.face_class(ch.faces[k]).dim == 2) cuts.push_back(k);
+    if (whole || m.face_class(ch.faces[k]).dim == 2) cuts.push_back(k);
   if (!ch.closed) cuts.push_back(n);  // faces[n] is the closing boundary face
   auto emit = [&](std::size_t s, std::size_t t, bool bounded) {
     loop.clear();
     const PrimalFaceId start = ch.faces[s], end = ch.faces[t > n ? t - n : t];
     if (bounded) loop.push_back(d.face_pt[start.idx]);
-    for (std::size_t k = s; k < t; ++k) loop.push_back(PointId(ch.cells[k % n].idx));
+    for (std::size_t k = s; k < t; ++k) {
+      if (k > s && d.face_pt[ch.faces[k % n].idx].valid()) loop.push_back(d.face_pt[ch.faces[k % n].idx]);
+      loop.push_back(PointId(ch.cells[k % n].idx));
+    }
+    if (!bounded && d.face_pt[ch.faces[0].idx].valid()) loop.push_back(d.face_pt[ch.faces[0].idx]);
     // One cut on a closed chain (a fracture tip edge): the fan goes all the
     // way round and closes on the start face's centre.
     if (bounded && end != start) {
@@ -285,7 +324,7 @@ void cell_pairs(const PrimalMesh& m, const MixedPoints& d, const PolyMesh& pm, d
   const double lim2 = collapse_length * collapse_length;
   for (std::size_t f = 0; f < m.num_faces(); ++f) {
     const PrimalCellId c0 = m.face_cell(PrimalFaceId(f), 0), c1 = m.face_cell(PrimalFaceId(f), 1);
-    if (!c1.valid() || m.face_class(PrimalFaceId(f)).dim == 2) continue;
+    if (!c1.valid() || m.face_class(PrimalFaceId(f)).dim == 2 || d.face_pt[f].valid()) continue;
     const auto [lo, hi] = std::minmax(c0.idx, c1.idx);
     const Vec3 dc = pm.points[hi] - pm.points[lo];
     if (dot(dc, dc) < lim2) draft.short_pairs.emplace_back(PointId(lo), PointId(hi));
@@ -363,7 +402,8 @@ double primal_collapse_length(const PrimalMesh& m, const DualParams& params) {
   return params.collapse_tolerance * mean_edge_length(m);
 }
 
-DualDraft build_primal_dual_draft(const PrimalMesh& m, const DualParams& params, DualStats* stats) {
+DualDraft build_primal_dual_draft(const PrimalMesh& m, const DualParams& params, DualStats* stats,
+                                  const std::vector<char>* whole) {
   params.validate();
   check_sizes(m);
   DualStats local;
@@ -373,7 +413,7 @@ DualDraft build_primal_dual_draft(const PrimalMesh& m, const DualParams& params,
   const bool keep = params.boundary == BoundaryMode::Keep;
   draft.keep_boundary = keep;
   auto t0 = Clock::now();
-  const MixedPoints d = make_points(m, keep, pm, st);
+  const MixedPoints d = make_points(m, keep, whole, pm, st);
   st.seconds_points = since(t0);
   t0 = Clock::now();
   if (params.cleanup) {
@@ -383,7 +423,7 @@ DualDraft build_primal_dual_draft(const PrimalMesh& m, const DualParams& params,
   }
   st.seconds_hints = since(t0);
   t0 = Clock::now();
-  PrimalSides sides = compute_primal_sides(m);
+  PrimalSides sides = compute_primal_sides(m, whole);
   st.seconds_sides = since(t0);
   t0 = Clock::now();
   std::vector<std::uint32_t> scan;
@@ -401,11 +441,12 @@ DualDraft build_primal_dual_draft(const PrimalMesh& m, const DualParams& params,
   return draft;
 }
 
-PolyMesh build_primal_dual(const PrimalMesh& m, const DualParams& params, DualStats* stats) {
+PolyMesh build_primal_dual(const PrimalMesh& m, const DualParams& params, DualStats* stats,
+                           const std::vector<char>* whole) {
   DualStats local;
   DualStats& st = stats ? *stats : local;
   st = DualStats{};
-  DualDraft draft = build_primal_dual_draft(m, params, &st);
+  DualDraft draft = build_primal_dual_draft(m, params, &st, whole);
   const CleanupStats cs = cleanup_dual(draft);
   st.merged_points = cs.merged_points;
   st.collapsed_points = cs.collapsed_points;

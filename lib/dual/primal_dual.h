@@ -16,8 +16,13 @@
 //             assemble_cells() of the tet path.
 // PolyMesh::point_origin ids are in the PrimalMesh's numbering: dim 3 a
 // PrimalCellId, dim 2 a PrimalFaceId, dim 1 an EdgeId, dim 0 a VertexId.
-// cell_primal is the input numbering (PrimalMesh::input_vertex). No vertex
-// cuts: the split (lib/split) works on tets only.
+// cell_primal is the input numbering (PrimalMesh::input_vertex).
+// Whole cuts (the mixed split, design §14): a vertex v with whole[v] has one
+// dual cell per cell around it, its corner: v, the midpoints of the cell's
+// edges through v, the vertex means of its faces through v and of the cell
+// (every face and cell through v takes its vertex mean as central point).
+// Its neighbours' faces pass through those points, so the dual stays
+// conformal.
 #pragma once
 #include "dual/build_dual.h"
 #include "mesh/primal_mesh.h"
@@ -27,13 +32,16 @@ namespace polydual {
 // Steps 1-7 and the hints. UsageError on bad params or a surface primal
 // (dim() == 2); InputError naming the source when it is too large for
 // PointOrigin ids.
-DualDraft build_primal_dual_draft(const PrimalMesh& m, const DualParams& params = {}, DualStats* stats = nullptr);
+// whole: per vertex (PrimalMesh numbering), cut whole; null: none.
+DualDraft build_primal_dual_draft(const PrimalMesh& m, const DualParams& params = {}, DualStats* stats = nullptr,
+                                  const std::vector<char>* whole = nullptr);
 
 // params.collapse_tolerance x the mean primal edge length of m.
 double primal_collapse_length(const PrimalMesh& m, const DualParams& params);
 
 // Draft, cleanup_dual, assemble_cells; *stats gets every stage's figures.
-PolyMesh build_primal_dual(const PrimalMesh& m, const DualParams& params = {}, DualStats* stats = nullptr);
+PolyMesh build_primal_dual(const PrimalMesh& m, const DualParams& params = {}, DualStats* stats = nullptr,
+                           const std::vector<char>* whole = nullptr);
 
 // The kind of the model face `tag` of m from the regions on its sides
 // (face_kind() of classified_tet_mesh.h's rule): one side External, two

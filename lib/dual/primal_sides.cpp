@@ -23,7 +23,7 @@ bool face_has(const CellDescriptor& d, int i, int iv) {
 
 }  // namespace
 
-PrimalSides compute_primal_sides(const PrimalMesh& m) {
+PrimalSides compute_primal_sides(const PrimalMesh& m, const std::vector<char>* whole) {
   const std::size_t nv = m.num_vertices();
   PrimalSides out;
   out.star_off.resize(nv + 1, 0);
@@ -34,6 +34,15 @@ PrimalSides compute_primal_sides(const PrimalMesh& m) {
     const VertexId v(vi);
     const auto star = m.vertex_cells(v);
     const std::uint32_t n = std::uint32_t(star.size());
+    // A vertex cut whole: one side per cell.
+    if (whole && (*whole)[vi]) {
+      for (std::uint32_t k = 0; k < n; ++k) {
+        out.corner_cell[out.star_off[vi] + k] = CellId(std::uint32_t(out.num_cells++));
+        out.cell_vertex.push_back(v);
+        out.cell_material.push_back(m.cell_class(star[k]).tag);
+      }
+      continue;
+    }
     // A vertex classified in a region has no model face through it: one side.
     if (m.vertex_class(v).dim == 3) {
       for (std::uint32_t k = 0; k < n; ++k) out.corner_cell[out.star_off[vi] + k] = CellId(out.num_cells);

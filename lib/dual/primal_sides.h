@@ -1,6 +1,7 @@
 // Sides of the vertices of a PrimalMesh (design §1, §14): the cells around v
 // connected through faces on no model face. One dual cell per side, as
-// dual/sides.h for tets (no vertex cuts: the mixed path has no split).
+// dual/sides.h for tets; a vertex cut whole (the mixed split) has one side
+// per cell around it.
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -27,6 +28,7 @@ struct PrimalSides {
 // Cells are numbered by primal vertex, then by the first cell (in star order,
 // increasing cell id) of each side: deterministic, and on a tet mesh the
 // numbering compute_sides() gives for the same tet order.
-PrimalSides compute_primal_sides(const PrimalMesh& m);
+// whole (per vertex, may be null): the vertices cut whole.
+PrimalSides compute_primal_sides(const PrimalMesh& m, const std::vector<char>* whole = nullptr);
 
 }  // namespace polydual

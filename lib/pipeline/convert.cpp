@@ -172,8 +172,7 @@ void require_valid(const ConvertResult& r) {
   std::string what;
   if (!defects.empty()) what = "the dual is not sound: " + defects_sentence(defects) + (r.check.invalid_cells ? "; " : "");
   if (r.check.invalid_cells == 0) throw InputError(source, "", what);
-  what += std::to_string(r.check.invalid_cells) + (r.mixed ? " cells remain invalid (the split works on tets only):"
-                                                            : " cells remain invalid after the split:");
+  what += std::to_string(r.check.invalid_cells) + " cells remain invalid after the split:";
   for (const std::string& item : invalid_cell_items(r, r.check.invalid_cells)) what += " " + item + ";";
   throw InputError(source, "", what);
 }
@@ -194,7 +193,7 @@ void run_pipeline(ConvertResult& r, const TetSoup& soup, const PipelineParams& p
   ConvertReport& rep = r.report;
   r.ignored = soup.ignored;
   r.warnings = soup.warnings;
-  if (is_mixed_or_surface(soup)) {  // design §14: the primal of any cell type, no split
+  if (is_mixed_or_surface(soup)) {  // design §14: the primal of any cell type
     pipeline_detail::run_mixed_stages(r, soup, params, hooks);
     if (release) *release = TetSoup{};
     finish_pipeline(r, params);

@@ -79,9 +79,9 @@ struct ConvertHooks {
 
 // soup -> ConvertResult. A mixed soup (is_mixed_or_surface, with volume
 // cells) goes build_primal -> the mixed dual (dual/primal_dual.h) -> cleanup
-// -> cells -> check -> optimise -> check, without cuts or split (recorded as
-// a skipped "split" stage when the split is on); a surface mesh is an
-// InputError. Throws InputError for a bad mesh (naming soup.source
+// -> cells -> check -> optimise -> check -> the mixed split (rounds of whole
+// cuts at the vertices of the cells still invalid, pipeline/convert_mixed.h;
+// --no-split: none); a surface mesh is an InputError. Throws InputError for a bad mesh (naming soup.source
 // and the place) and UsageError for bad params; with params.split.require_valid
 // also when a cell stays invalid or the validation of the result fails
 // (r.check.validation.defects(): open cells, face errors, missing model

@@ -301,6 +301,56 @@ TEST(DualMixed, ModelFacetsOfAPrimalMesh) {
   }
 }
 
+// Whole cuts (the mixed split): any set of vertices cut whole leaves every
+// cell closed, every face sound and the volume exact, in both modes (the
+// neighbours' faces pass through the corners' points); a vertex cut whole has
+// one cell per primal cell round it; with every vertex cut, the cells are
+// the barycentric corners, convex on a hex-pyramid-tet block: all valid.
+TEST(DualMixed, WholeCutsStayConformalAndCutEveryCorner) {
+  RandomMeshParams p;
+  p.seed = 3;
+  p.num_points = 40;
+  p.face_points = 6;
+  p.regions = 2;
+  p.fracture = true;
+  const double h = 0.05 + 0.065;
+  const std::pair<TetSoup, double> meshes[] = {{random_hex_pyramid_tets(5, 4, 0.2), 1.0},
+                                               {random_prism_layers(p, 2, 0.05, 1.3), std::pow(1 + 2 * h, 3)}};
+  for (const auto& [soup, volume] : meshes) {
+    const PrimalMesh m = build_primal(cell_soup(soup));
+    for (std::uint64_t seed : {1u, 2u, 3u}) {
+      std::vector<char> whole(m.num_vertices(), 0);
+      std::size_t k = 0;
+      for (auto& w : whole) w = char((k++ * 2654435761u + seed * 97u) % 10 < 3);  // about 30 %
+      for (BoundaryMode mode : {BoundaryMode::Caps, BoundaryMode::Keep}) {
+        DualParams dp;
+        dp.boundary = mode;
+        const PolyMesh pm = build_primal_dual(m, dp, nullptr, &whole);
+        const std::string what = std::string(soup.source) + " seed " + std::to_string(seed) + " " + boundary_mode_name(mode);
+        const CheckResult c = check_mesh(pm, nullptr);
+        EXPECT_EQ(c.validation.closed_cells, pm.num_cells()) << what;
+        EXPECT_EQ(c.validation.face_errors, 0u) << what;
+        double sum = 0;
+        std::map<std::uint32_t, std::size_t> per_vertex;
+        for (std::size_t q = 0; q < pm.num_cells(); ++q) {
+          sum += cell_volume(pm, CellId(q));
+          ++per_vertex[pm.cell_primal[q].idx];
+        }
+        EXPECT_NEAR(sum, volume, 1e-12 * volume) << what;
+        for (std::size_t v = 0; v < m.num_vertices(); ++v)
+          if (whole[v]) EXPECT_EQ(per_vertex[std::uint32_t(m.input_vertex(VertexId(v)))], m.vertex_cells(VertexId(v)).size()) << what;
+      }
+    }
+  }
+  const PrimalMesh block = build_primal(cell_soup(random_hex_pyramid_tets(5, 4, 0.2)));
+  const std::vector<char> all(block.num_vertices(), 1);
+  const PolyMesh pm = build_primal_dual(block, DualParams{}, nullptr, &all);
+  EXPECT_EQ(check_mesh(pm, nullptr).invalid_cells, 0u);
+  std::size_t corners = 0;
+  for (std::size_t c = 0; c < block.num_cells(); ++c) corners += block.cell_vertices(PrimalCellId(c)).size();
+  EXPECT_EQ(pm.num_cells(), corners);
+}
+
 // The same dual, byte for byte, on one thread and on all of them.
 TEST(DualMixed, DeterministicForAnyThreadCount) {
   const PrimalMesh m = build_primal(cell_soup(hex_pyramid_tet_soup(4)));
