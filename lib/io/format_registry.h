@@ -1,5 +1,5 @@
 // The formats polydual reads and writes, each one class and one registration
-// line (io/mesh_readers.cpp, io/poly_writers.cpp). Everything the command
+// line (io/mesh_formats.cpp, io/poly_writers.cpp). Everything the command
 // says about formats comes from here: the `--format` values, the extensions
 // that select a reader for an input and a writer for an output, the help text
 // and the errors listing the known formats. A new format (Exodus II, CGNS, a
@@ -19,10 +19,10 @@
 
 namespace polydual {
 
-// Reads one tet mesh format from a path.
-class MeshReader {
+// One tet mesh format: read from a path, and written (generate, round trips).
+class MeshFormat {
  public:
-  virtual ~MeshReader() = default;
+  virtual ~MeshFormat() = default;
   virtual std::string_view name() const = 0;  // "msh", "medit", ...
   // Lower-case, with the dot: {".msh", ".gmsh2"}. The first one is the
   // format's own; an input is read by the reader listing its extension.
@@ -30,6 +30,9 @@ class MeshReader {
   virtual std::string_view help() const = 0;  // one line: what the format is
   // The reader's InputError (file and line/byte/record) for bad content.
   virtual TetSoup read(const std::string& path) const = 0;
+  // Writes the soup's tets and classification atomically (the format's own
+  // writer; std::runtime_error when the file cannot be written).
+  virtual void write(const TetSoup& soup, const std::string& path) const = 0;
 };
 
 // Writes a polyhedral mesh in one format.
@@ -61,7 +64,7 @@ class SurfaceWriter {
 };
 
 // All registered formats, in registration order.
-const std::vector<const MeshReader*>& mesh_readers();
+const std::vector<const MeshFormat*>& mesh_formats();
 const std::vector<const PolyWriter*>& poly_writers();
 const std::vector<const SurfaceWriter*>& surface_writers();
 // The surface writer for `--format` `requested` (empty: by `path`'s
@@ -72,7 +75,9 @@ const SurfaceWriter& surface_writer_for(std::string_view requested, const std::s
 // The reader of `path`'s extension (case-insensitive). An unknown extension
 // is an InputError naming the file and listing the known extensions (after
 // the file itself was found readable, so a missing file is reported as such).
-const MeshReader& mesh_reader_for(const std::string& path);
+const MeshFormat& mesh_format_for(const std::string& path);
+// The format of an extension (lower-case, with its dot), or null.
+const MeshFormat* mesh_format_of_extension(std::string_view ext);
 // The writer called `name`; UsageError listing the known names otherwise.
 const PolyWriter& poly_writer_named(std::string_view name);
 // The writer of an output path by its extension (see PolyWriter::extension);

@@ -1,4 +1,5 @@
-// Writing a TetSoup by file extension, for round trips and conversions:
+// Writing a TetSoup by file extension (the format registry, io/format_registry.h),
+// for round trips and conversions:
 // .msh (Gmsh 4.1 ASCII with $Entities), .mesh (Medit), .node/.ele (TetGen),
 // .vtu (VTK XML ASCII). Every writer goes through write_file_atomically.
 #pragma once

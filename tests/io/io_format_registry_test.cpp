@@ -41,7 +41,7 @@ std::string run(const std::string& cmd) {
 
 TEST(FormatRegistry, NamesAndExtensionsAreDistinct) {
   std::set<std::string> names, exts;
-  for (const MeshReader* r : mesh_readers()) {
+  for (const MeshFormat* r : mesh_formats()) {
     EXPECT_TRUE(names.insert(std::string(r->name())).second) << r->name();
     EXPECT_FALSE(r->help().empty()) << r->name();
     for (std::string_view e : r->extensions()) EXPECT_TRUE(exts.insert(std::string(e)).second) << e;
@@ -57,19 +57,29 @@ TEST(FormatRegistry, NamesAndExtensionsAreDistinct) {
 TEST(FormatRegistry, EveryReaderRoundTripsItsExtension) {
   const TetSoup a = read_msh_file(std::string(POLYDUAL_TEST_DATA) + "/cube5.msh");
   const fs::path dir = scratch();
-  for (const MeshReader* r : mesh_readers()) {
+  for (const MeshFormat* r : mesh_formats()) {
     for (std::string_view e : r->extensions()) {
-      EXPECT_EQ(&mesh_reader_for("a/b" + std::string(e)), r) << e;
+      EXPECT_EQ(&mesh_format_for("a/b" + std::string(e)), r) << e;
       std::string upper(e);
       for (char& c : upper) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-      EXPECT_EQ(&mesh_reader_for("B" + upper), r) << upper;
+      EXPECT_EQ(&mesh_format_for("B" + upper), r) << upper;
     }
     const std::string path = (dir / ("rt" + std::string(r->extensions().front()))).string();
-    write_tet_mesh(a, path);
+    write_tet_mesh(a, path);  // by extension: the format's own writer
     const TetSoup b = r->read(path);
     EXPECT_EQ(b.tets, a.tets) << r->name();
     EXPECT_EQ(read_tet_mesh(path).tets, a.tets) << r->name();
+    const std::string direct = (dir / ("w" + std::string(r->extensions().front()))).string();
+    r->write(a, direct);
+    EXPECT_EQ(r->read(direct).tets, a.tets) << r->name();
   }
+  try {
+    write_tet_mesh(a, (dir / "x.stl").string());
+    ADD_FAILURE() << "no UsageError";
+  } catch (const UsageError& e) {
+    EXPECT_THAT(e.what(), HasSubstr(mesh_extensions_text()));
+  }
+  EXPECT_FALSE(fs::exists(dir / "x.stl"));
   fs::remove_all(dir);
 }
 
@@ -97,7 +107,7 @@ TEST(FormatRegistry, HelpTextListsEveryFormat) {
     EXPECT_THAT(poly_format_help(), HasSubstr(std::string(w->name()) + ": " + std::string(w->help())));
     EXPECT_THAT(help, HasSubstr(std::string(w->help()).substr(0, 20))) << w->name();
   }
-  for (const MeshReader* r : mesh_readers())
+  for (const MeshFormat* r : mesh_formats())
     for (std::string_view e : r->extensions()) EXPECT_THAT(help, HasSubstr(std::string(e))) << e;
   const std::string usage = run(std::string(POLYDUAL_BINARY) + " --help 2>&1");
   EXPECT_THAT(usage, HasSubstr("convert IN -o OUT [--format vtu|foam]"));
