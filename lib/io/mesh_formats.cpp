@@ -1,5 +1,7 @@
-// The tet mesh formats, one class per format wrapping the format's own
-// reader and writer functions, and their registration (one line per format).
+// The tet mesh formats, each its reader and writer functions wrapped in a
+// MeshFormat, and their registration (one line per format).
+#include <utility>
+
 #include "core/error.h"
 #include "io/file_bytes.h"
 #include "io/format_registry.h"
@@ -16,50 +18,39 @@ namespace polydual {
 
 namespace {
 
-class GmshReader final : public MeshFormat {
+// A format whose reader and writer are free functions (every tet format so
+// far; a format with state of its own derives from MeshFormat instead).
+class FunctionFormat final : public MeshFormat {
  public:
-  std::string_view name() const override { return "msh"; }
-  // .gmsh2: the name Netgen proposes for its "Gmsh2 Format" export (msh 2.0).
-  std::vector<std::string_view> extensions() const override { return {".msh", ".gmsh2"}; }
-  std::string_view help() const override { return "Gmsh msh 2.0-2.2 and 4.1, ASCII or binary"; }
-  TetSoup read(const std::string& path) const override { return read_msh_file(path); }
-  void write(const TetSoup& soup, const std::string& path) const override { write_msh(soup, path); }
-};
+  using Read = TetSoup (*)(const std::string&);
+  using Write = void (*)(const TetSoup&, const std::string&);
+  FunctionFormat(std::string_view name, std::vector<std::string_view> extensions, std::string_view help, Read read,
+                 Write write)
+      : name_(name), extensions_(std::move(extensions)), help_(help), read_(read), write_(write) {}
+  std::string_view name() const override { return name_; }
+  std::vector<std::string_view> extensions() const override { return extensions_; }
+  std::string_view help() const override { return help_; }
+  TetSoup read(const std::string& path) const override { return read_(path); }
+  void write(const TetSoup& soup, const std::string& path) const override { write_(soup, path); }
 
-class MeditReader final : public MeshFormat {
- public:
-  std::string_view name() const override { return "medit"; }
-  std::vector<std::string_view> extensions() const override { return {".mesh"}; }
-  std::string_view help() const override { return "Medit (INRIA) ASCII mesh"; }
-  TetSoup read(const std::string& path) const override { return read_medit_file(path); }
-  void write(const TetSoup& soup, const std::string& path) const override { write_medit(soup, path); }
-};
-
-class TetgenReader final : public MeshFormat {
- public:
-  std::string_view name() const override { return "tetgen"; }
-  std::vector<std::string_view> extensions() const override { return {".node", ".ele"}; }
-  std::string_view help() const override { return "TetGen .node/.ele (and .face when present)"; }
-  TetSoup read(const std::string& path) const override { return read_tetgen_files(path); }
-  void write(const TetSoup& soup, const std::string& path) const override { write_tetgen(soup, path); }
-};
-
-class VtuReader final : public MeshFormat {
- public:
-  std::string_view name() const override { return "vtu"; }
-  std::vector<std::string_view> extensions() const override { return {".vtu"}; }
-  std::string_view help() const override { return "VTK XML UnstructuredGrid of tetrahedra"; }
-  TetSoup read(const std::string& path) const override { return read_vtu_file(path); }
-  void write(const TetSoup& soup, const std::string& path) const override { write_vtu(soup, path); }
+ private:
+  std::string_view name_;
+  std::vector<std::string_view> extensions_;
+  std::string_view help_;
+  Read read_;
+  Write write_;
 };
 
 }  // namespace
 
 const std::vector<const MeshFormat*>& mesh_formats() {
-  static const GmshReader msh;
-  static const MeditReader medit;
-  static const TetgenReader tetgen;
-  static const VtuReader vtu;
+  // .gmsh2: the name Netgen proposes for its "Gmsh2 Format" export (msh 2.0).
+  static const FunctionFormat msh{"msh", {".msh", ".gmsh2"}, "Gmsh msh 2.0-2.2 and 4.1, ASCII or binary",
+                                  [](const std::string& path) { return read_msh_file(path); }, write_msh};
+  static const FunctionFormat medit{"medit", {".mesh"}, "Medit (INRIA) ASCII mesh", read_medit_file, write_medit};
+  static const FunctionFormat tetgen{"tetgen", {".node", ".ele"}, "TetGen .node/.ele (and .face when present)",
+                                     read_tetgen_files, write_tetgen};
+  static const FunctionFormat vtu{"vtu", {".vtu"}, "VTK XML UnstructuredGrid of tetrahedra", read_vtu_file, write_vtu};
   static const std::vector<const MeshFormat*> all = {&msh, &medit, &tetgen, &vtu};
   return all;
 }
@@ -72,8 +63,8 @@ const MeshFormat* mesh_format_of_extension(std::string_view ext) {
 }
 
 const MeshFormat& mesh_format_for(const std::string& path) {
-  if (const MeshFormat* f = mesh_format_of_extension(lower_extension(path))) return *f;
   const std::string ext = lower_extension(path);
+  if (const MeshFormat* f = mesh_format_of_extension(ext)) return *f;
   io::require_regular_file(path);  // a missing file or a device is reported as such first
   throw InputError(path, "", "unknown mesh file extension '" + ext + "' (supported: " + mesh_extensions_text() + ")");
 }

@@ -130,6 +130,15 @@ std::set<std::int32_t> regions_with_curved_faces(const PrimalMesh& m) {
   return regions;
 }
 
+// The optimiser's parameters on a mixed mesh: Auto untangles only, since the
+// kappa objective would make the layers of prisms and hexahedra isotropic
+// (OptimParams::Method::Auto).
+OptimParams mixed_optim_params(const PipelineParams& params) {
+  OptimParams optim = params.optim;
+  if (optim.method == OptimParams::Method::Auto) optim.method = OptimParams::Method::Untangle;
+  return optim;
+}
+
 // Whether the dual point of origin o is made from an entity through a
 // vertex cut whole (its position is then the builder's, not a warm start).
 bool touches(const PrimalMesh& m, const std::vector<char>& whole, PointOrigin o) {
@@ -164,8 +173,9 @@ void warm_start(const PrimalMesh& m, const std::vector<char>& whole, const PolyM
 // are cut whole (dual/primal_dual.h), the dual rebuilt and warm-started,
 // the pieces and their neighbours re-optimised. Returns the vertices newly
 // cut (0: no progress).
-std::size_t mixed_split_round(ConvertResult& r, const PipelineParams& params, std::vector<char>& whole,
-                              const std::vector<VertexId>& vertex_of_input, const ConvertHooks& hooks) {
+std::size_t mixed_split_round(ConvertResult& r, const PipelineParams& params, const ModelFacets& facets,
+                              std::vector<char>& whole, const std::vector<VertexId>& vertex_of_input,
+                              const ConvertHooks& hooks) {
   const PrimalMesh& m = r.mixed->mesh;
   std::size_t added = 0;
   for (std::size_t c = 0; c < r.check.verdicts.size(); ++c) {
@@ -179,10 +189,7 @@ std::size_t mixed_split_round(ConvertResult& r, const PipelineParams& params, st
   warm_start(m, whole, r.mesh, pm);
   std::vector<char> seeds(pm.num_cells(), 0);
   for (std::size_t c = 0; c < pm.num_cells(); ++c) seeds[c] = whole[vertex_of_input[pm.cell_primal[c].idx].idx];
-  const ModelFacets facets = model_facets(m);
-  OptimParams optim = params.optim;
-  if (optim.method == OptimParams::Method::Auto) optim.method = OptimParams::Method::Untangle;
-  optimize(pm, &facets, optim, hooks.progress, seeds);
+  optimize(pm, &facets, mixed_optim_params(params), hooks.progress, seeds);
   r.mesh = std::move(pm);
   r.check = check_mixed(r, true);
   return added;
@@ -192,9 +199,8 @@ std::size_t mixed_split_round(ConvertResult& r, const PipelineParams& params, st
 // cells that stay invalid, until none is (or a round cuts nothing new, or
 // split.max_rounds). A vertex cut whole has one cell per corner, the
 // barycentric corner: convex for a tet, and for any convex cell with planar
-// faces, so the rounds end valid on such meshes once every invalid cell's
-// vertex is cut and no point of a cut corner has moved (the optimiser only
-// accepts what does not worsen).
+// faces, in exact arithmetic; its points are rounded and the re-optimisation
+// may move them, so a corner can stay invalid (proofs/mixed_dual.md M4).
 void split_mixed(ConvertResult& r, const PipelineParams& params, const ConvertHooks& hooks) {
   run_stage(r.report, hooks, "split", [&](Json& stats) {
     const PrimalMesh& m = r.mixed->mesh;
@@ -205,11 +211,12 @@ void split_mixed(ConvertResult& r, const PipelineParams& params, const ConvertHo
       vertex_of_input[in] = VertexId(std::uint32_t(v));
     }
     std::vector<char> whole(m.num_vertices(), 0);
+    const ModelFacets facets = model_facets(m);
     const std::size_t invalid_before = r.check.invalid_cells, cells_before = r.mesh.num_cells();
     int rounds = 0;
     std::size_t cut = 0;
     while (r.check.invalid_cells > 0 && rounds < params.split.max_rounds) {
-      const std::size_t added = mixed_split_round(r, params, whole, vertex_of_input, hooks);
+      const std::size_t added = mixed_split_round(r, params, facets, whole, vertex_of_input, hooks);
       if (added == 0) break;
       cut += added;
       ++rounds;
@@ -277,11 +284,7 @@ void run_mixed_stages(ConvertResult& r, const TetSoup& soup, const PipelineParam
   if (optimise) {
     run_stage(rep, hooks, "optimize", [&](Json& stats) {
       const ModelFacets facets = model_facets(r.mixed->mesh);
-      // Auto untangles only: the kappa objective would make the layers of
-      // prisms and hexahedra isotropic (OptimParams::Method::Auto).
-      OptimParams optim = params.optim;
-      if (optim.method == OptimParams::Method::Auto) optim.method = OptimParams::Method::Untangle;
-      stats = optimize(r.mesh, &facets, optim, hooks.progress, {}, r.check.verdicts).to_json();
+      stats = optimize(r.mesh, &facets, mixed_optim_params(params), hooks.progress, {}, r.check.verdicts).to_json();
       return 0;
     });
     r.check = run_stage(rep, hooks, "check_after", [&](Json& stats) {
