@@ -12,6 +12,7 @@
 #include "mesh/model_facets.h"
 #include "pipeline/run_stage.h"
 #include "predicates/predicates.h"
+#include "split/mixed_split.h"
 
 namespace polydual::pipeline_detail {
 
@@ -139,96 +140,27 @@ OptimParams mixed_optim_params(const PipelineParams& params) {
   return optim;
 }
 
-// Whether the dual point of origin o is made from an entity through a
-// vertex cut whole (its position is then the builder's, not a warm start).
-bool touches(const PrimalMesh& m, const std::vector<char>& whole, PointOrigin o) {
-  auto any = [&](auto vs) {
-    for (VertexId v : vs)
-      if (whole[v.idx]) return true;
-    return false;
-  };
-  switch (o.dim) {
-    case 3: return any(m.cell_vertices(PrimalCellId(o.id)));
-    case 2: return any(m.face_vertices(PrimalFaceId(o.id)));
-    case 1: return whole[m.edge(EdgeId(o.id))[0].idx] || whole[m.edge(EdgeId(o.id))[1].idx];
-    default: return whole[o.id] != 0;
-  }
-}
-
-// The rebuilt dual with the points of `before` (an optimised dual of the same
-// primal) wherever a point has the same origin and touches no vertex cut
-// whole: the optimiser's work elsewhere is kept.
-void warm_start(const PrimalMesh& m, const std::vector<char>& whole, const PolyMesh& before, PolyMesh& after) {
-  std::map<std::pair<int, std::uint32_t>, Point3> at;
-  for (std::size_t p = 0; p < before.num_points(); ++p)
-    at.emplace(std::pair<int, std::uint32_t>{before.point_origin[p].dim, before.point_origin[p].id}, before.points[p]);
-  for (std::size_t p = 0; p < after.num_points(); ++p) {
-    const PointOrigin o = after.point_origin[p];
-    if (touches(m, whole, o)) continue;
-    if (const auto it = at.find({o.dim, o.id}); it != at.end()) after.points[p] = it->second;
-  }
-}
-
-// One round of the mixed split: the primal vertices of the invalid cells
-// are cut whole (dual/primal_dual.h), the dual rebuilt and warm-started,
-// the pieces and their neighbours re-optimised. Returns the vertices newly
-// cut (0: no progress).
-std::size_t mixed_split_round(ConvertResult& r, const PipelineParams& params, const ModelFacets& facets,
-                              std::vector<char>& whole, const std::vector<VertexId>& vertex_of_input,
-                              const ConvertHooks& hooks) {
-  const PrimalMesh& m = r.mixed->mesh;
-  std::size_t added = 0;
-  for (std::size_t c = 0; c < r.check.verdicts.size(); ++c) {
-    const VertexId v = vertex_of_input[r.mesh.cell_primal[c].idx];
-    if (!r.check.verdicts[c].valid && !whole[v.idx]) whole[v.idx] = 1, ++added;
-  }
-  if (added == 0) return 0;
-  DualDraft draft = build_primal_dual_draft(m, params.dual, nullptr, &whole);
-  cleanup_dual(draft);
-  PolyMesh pm = assemble_cells(std::move(draft));
-  warm_start(m, whole, r.mesh, pm);
-  std::vector<char> seeds(pm.num_cells(), 0);
-  for (std::size_t c = 0; c < pm.num_cells(); ++c) seeds[c] = whole[vertex_of_input[pm.cell_primal[c].idx].idx];
-  optimize(pm, &facets, mixed_optim_params(params), hooks.progress, seeds);
-  r.mesh = std::move(pm);
-  r.check = check_mixed(r, true);
-  return added;
-}
-
-// The mixed split (design §14): rounds of whole cuts at the vertices of the
-// cells that stay invalid, until none is (or a round cuts nothing new, or
-// split.max_rounds). A vertex cut whole has one cell per corner, the
-// barycentric corner: convex for a tet, and for any convex cell with planar
-// faces, in exact arithmetic; its points are rounded and the re-optimisation
-// may move them, so a corner can stay invalid (proofs/mixed_dual.md M4).
+// The mixed split (split/mixed_split.h) after the first optimised dual: the
+// optimiser reaches it as a callback with the mixed method; the mesh it
+// returns is then validated (check_split), as the tet pipeline does.
 void split_mixed(ConvertResult& r, const PipelineParams& params, const ConvertHooks& hooks) {
+  const ModelFacets facets = model_facets(r.mixed->mesh);
+  const OptimParams optim = mixed_optim_params(params);
+  SplitHooks split_hooks;
+  split_hooks.progress = hooks.progress;
+  split_hooks.metric = params.optim.metric;
+  split_hooks.optimise = [&](PolyMesh& mesh, std::span<const char> seed, std::span<const CellVerdict> verdicts, bool) {
+    return optimize(mesh, &facets, optim, hooks.progress, seed, verdicts).to_json();
+  };
   run_stage(r.report, hooks, "split", [&](Json& stats) {
-    const PrimalMesh& m = r.mixed->mesh;
-    std::vector<VertexId> vertex_of_input;
-    for (std::size_t v = 0; v < m.num_vertices(); ++v) {
-      const std::uint64_t in = m.input_vertex(VertexId(v));
-      if (in >= vertex_of_input.size()) vertex_of_input.resize(in + 1, VertexId::invalid());
-      vertex_of_input[in] = VertexId(std::uint32_t(v));
-    }
-    std::vector<char> whole(m.num_vertices(), 0);
-    const ModelFacets facets = model_facets(m);
-    const std::size_t invalid_before = r.check.invalid_cells, cells_before = r.mesh.num_cells();
-    int rounds = 0;
-    std::size_t cut = 0;
-    while (r.check.invalid_cells > 0 && rounds < params.split.max_rounds) {
-      const std::size_t added = mixed_split_round(r, params, facets, whole, vertex_of_input, hooks);
-      if (added == 0) break;
-      cut += added;
-      ++rounds;
-    }
-    stats = Json::object();
-    stats.set("rounds", rounds);
-    stats.set("whole_vertices", cut);
-    stats.set("invalid_before", invalid_before);
-    stats.set("invalid_after", r.check.invalid_cells);
-    stats.set("cells_before", cells_before);
-    stats.set("cells_after", r.mesh.num_cells());
+    stats = run_mixed_split(r.mixed->mesh, params.dual, params.split, r.mesh, r.check, split_hooks);
     return 0;
+  });
+  r.check = run_stage(r.report, hooks, "check_split", [&](Json& stats) {
+    CheckResult c = check_mixed(r, true);
+    stats = c.to_json();
+    stats.set("invalid_after", c.invalid_cells);
+    return c;
   });
 }
 

@@ -19,8 +19,8 @@ namespace polydual::pipeline_detail {
 // cut whole the primal vertices of the cells still invalid, rebuild the dual
 // with the optimised points kept where no cut touches them, re-optimise
 // around the cuts and check; they stop when no cell is invalid or a round
-// cuts no new vertex. Sets r.mixed, r.mesh, r.check and the report's
-// invalid_before. InputError for a surface mesh (no volume cell).
+// cuts no new vertex (split/mixed_split.h); then check_split validates the
+// mesh kept. Sets r.mixed, r.mesh, r.check and the report's invalid_before. InputError for a surface mesh (no volume cell).
 void run_mixed_stages(ConvertResult& r, const TetSoup& soup, const PipelineParams& params, const ConvertHooks& hooks);
 
 // The primal's per-material volumes (cells cut into fans of tets from their

@@ -1,0 +1,120 @@
+#include "split/mixed_split.h"
+
+#include <cstdio>
+#include <map>
+
+#include "core/interrupt.h"
+#include "core/stopwatch.h"
+#include "dual/cleanup.h"
+#include "dual/primal_dual.h"
+
+namespace polydual {
+
+namespace {
+
+// Whether the dual point of origin o is made from an entity through a
+// vertex cut whole (its position is then the builder's, not a warm start).
+bool touches(const PrimalMesh& m, const std::vector<char>& whole, PointOrigin o) {
+  auto any = [&](auto vs) {
+    for (VertexId v : vs)
+      if (whole[v.idx]) return true;
+    return false;
+  };
+  switch (o.dim) {
+    case 3: return any(m.cell_vertices(PrimalCellId(o.id)));
+    case 2: return any(m.face_vertices(PrimalFaceId(o.id)));
+    case 1: return whole[m.edge(EdgeId(o.id))[0].idx] || whole[m.edge(EdgeId(o.id))[1].idx];
+    default: return whole[o.id] != 0;
+  }
+}
+
+// The rounds' state: the vertices cut whole (internal numbering) and the
+// internal vertex of each input number (PolyMesh::cell_primal).
+struct MixedSplit {
+  const PrimalMesh& m;
+  const DualParams& dual;
+  const SplitHooks& hooks;
+  std::vector<char> whole;
+  std::vector<VertexId> vertex_of_input;
+
+  MixedSplit(const PrimalMesh& mesh, const DualParams& d, const SplitHooks& h)
+      : m(mesh), dual(d), hooks(h), whole(mesh.num_vertices(), 0) {
+    for (std::size_t v = 0; v < m.num_vertices(); ++v) {
+      const std::uint64_t in = m.input_vertex(VertexId(v));
+      if (in >= vertex_of_input.size()) vertex_of_input.resize(in + 1, VertexId::invalid());
+      vertex_of_input[in] = VertexId(std::uint32_t(v));
+    }
+  }
+  bool cut_whole(const PolyMesh& mesh, std::size_t c) const {
+    return whole[vertex_of_input[mesh.cell_primal[c].idx].idx] != 0;
+  }
+
+  // One round: the primal vertices of the invalid cells are cut whole, the
+  // dual rebuilt and warm-started, the corners and their neighbours
+  // re-optimised, the result checked. Returns the vertices newly cut (0: no
+  // progress, mesh and check unchanged).
+  std::size_t round(PolyMesh& mesh, CheckResult& check) {
+    std::size_t added = 0;
+    for (std::size_t c = 0; c < check.verdicts.size(); ++c)
+      if (!check.verdicts[c].valid && !cut_whole(mesh, c))
+        whole[vertex_of_input[mesh.cell_primal[c].idx].idx] = 1, ++added;
+    if (added == 0) return 0;
+    DualDraft draft = build_primal_dual_draft(m, dual, nullptr, &whole);
+    cleanup_dual(draft);
+    PolyMesh pm = assemble_cells(std::move(draft));
+    warm_start_whole(m, whole, mesh, pm);
+    std::vector<char> seeds(pm.num_cells(), 0);
+    for (std::size_t c = 0; c < pm.num_cells(); ++c) seeds[c] = char(cut_whole(pm, c));
+    hooks.optimise(pm, seeds, {}, false);
+    mesh = std::move(pm);
+    check = check_mesh(mesh, nullptr, false);
+    return added;
+  }
+};
+
+}  // namespace
+
+std::size_t warm_start_whole(const PrimalMesh& m, const std::vector<char>& whole, const PolyMesh& before,
+                             PolyMesh& after) {
+  std::map<std::pair<int, std::uint32_t>, Point3> at;
+  for (std::size_t p = 0; p < before.num_points(); ++p)
+    at.emplace(std::pair<int, std::uint32_t>{before.point_origin[p].dim, before.point_origin[p].id}, before.points[p]);
+  std::size_t moved = 0;
+  for (std::size_t p = 0; p < after.num_points(); ++p) {
+    const PointOrigin o = after.point_origin[p];
+    if (touches(m, whole, o)) continue;
+    if (const auto it = at.find({o.dim, o.id}); it != at.end()) after.points[p] = it->second, ++moved;
+  }
+  return moved;
+}
+
+Json run_mixed_split(const PrimalMesh& m, const DualParams& dual, const SplitParams& params, PolyMesh& mesh,
+                     CheckResult& check, const SplitHooks& hooks) {
+  MixedSplit split(m, dual, hooks);
+  const Stopwatch clock;
+  const std::size_t invalid_before = check.invalid_cells, cells_before = mesh.num_cells();
+  int rounds = 0;
+  std::size_t cut = 0;
+  while (check.invalid_cells > 0 && rounds < params.max_rounds) {
+    throw_if_interrupted();
+    const std::size_t added = split.round(mesh, check);
+    if (added == 0) break;
+    cut += added;
+    ++rounds;
+    if (hooks.progress) {
+      char detail[128];
+      std::snprintf(detail, sizeof detail, "invalid cells %zu, vertices cut whole %zu", check.invalid_cells, cut);
+      hooks.progress(ProgressEvent{"split", rounds, params.max_rounds, clock.seconds(), detail});
+    }
+  }
+  Json stats = Json::object();
+  stats.set("rounds", rounds);
+  stats.set("whole_vertices", cut);
+  stats.set("invalid_before", invalid_before);
+  stats.set("invalid_after", check.invalid_cells);
+  stats.set("cells_before", cells_before);
+  stats.set("cells_after", mesh.num_cells());
+  return stats;
+}
+
+}  // namespace polydual
