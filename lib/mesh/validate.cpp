@@ -277,27 +277,17 @@ void check_cells(const PolyMesh& pm, const std::vector<char>& status, Validation
 
 // design §10: every model vertex is a dual point (at its place), every model edge
 // is covered by dual edges, every model face by dual faces with its tag.
-void check_model_entities(const PolyMesh& pm, const std::vector<char>& status,
-                          const ClassifiedTetMesh& primal, ValidationReport& r) {
-  using Placed = std::tuple<std::int32_t, double, double, double>;  // (tag, x, y, z)
-  std::set<Placed> model_vertices;
-  for (std::size_t v = 0; v < primal.num_vertices(); ++v)
-    if (const ModelRef c = primal.vertex_class(VertexId(v)); c.dim == 0) {
-      const Point3& x = primal.point(VertexId(v));
-      model_vertices.insert({c.tag, x.x, x.y, x.z});
-    }
+void check_model_entities(const PolyMesh& pm, const std::vector<char>& status, const PrimalReference& primal,
+                          ValidationReport& r) {
   std::set<std::pair<int, std::int32_t>> have;
   for (std::size_t p = 0; p < pm.num_points(); ++p)
     if (const ModelRef c = pm.point_class[p];
-        c.dim == 0 && model_vertices.count({c.tag, pm.points[p].x, pm.points[p].y, pm.points[p].z}))
+        c.dim == 0 && primal.model_vertices.count({c.tag, pm.points[p].x, pm.points[p].y, pm.points[p].z}))
       have.insert({0, c.tag});
   // A dual edge lies on model edge e when one end is on e and the other on e
   // or on a model vertex that bounds e.
-  std::set<std::pair<std::int32_t, std::int32_t>> edge_vertex;  // (edge tag, vertex tag)
-  for (const ModelEntity& v : primal.model().entities[0])
-    for (std::int32_t e : v.bounds) edge_vertex.insert({e, v.tag});
   auto along = [&](ModelRef on_edge, ModelRef other) {
-    return other == on_edge || (other.dim == 0 && edge_vertex.count({on_edge.tag, other.tag}));
+    return other == on_edge || (other.dim == 0 && primal.edge_vertex.count({on_edge.tag, other.tag}));
   };
   for (std::size_t f = 0; f < pm.num_faces(); ++f) {
     if (!(status[f] & kLoopInRange)) continue;
@@ -311,9 +301,9 @@ void check_model_entities(const PolyMesh& pm, const std::vector<char>& status,
   }
   const char* names[3] = {"vertex", "edge", "face"};
   for (int dim = 0; dim < 3; ++dim)
-    for (const ModelEntity& e : primal.model().entities[dim])
-      if (!have.count({dim, e.tag}))
-        r.missing_model_entities.push_back(std::string("model ") + names[dim] + " " + std::to_string(e.tag));
+    for (std::int32_t tag : primal.entities[dim])
+      if (!have.count({dim, tag}))
+        r.missing_model_entities.push_back(std::string("model ") + names[dim] + " " + std::to_string(tag));
 }
 
 // Regions bounded by a model face (external or interface; a fracture has the
@@ -333,16 +323,14 @@ std::set<std::int32_t> regions_with_curved_faces(const ClassifiedTetMesh& primal
 }
 
 // Per-material dual volume against the primal's (double sums, relative tolerance).
-void check_volumes(const ClassifiedTetMesh& primal, double tol, ValidationReport& r) {
+void check_volumes(const PrimalReference& primal, double tol, ValidationReport& r) {
   r.volume_rel_tol = tol;
-  for (std::size_t t = 0; t < primal.num_tets(); ++t)
-    r.primal_material_volume[primal.region(TetId(t))] += primal.tet_volume(TetId(t));
-  const std::set<std::int32_t> curved = regions_with_curved_faces(primal);
+  r.primal_material_volume = primal.material_volume;
   std::set<std::int32_t> materials;
   for (const auto& [tag, v] : r.primal_material_volume) materials.insert(tag);
   for (const auto& [tag, v] : r.material_volume) materials.insert(tag);
   for (std::int32_t tag : materials) {
-    if (curved.count(tag)) continue;
+    if (primal.curved_regions.count(tag)) continue;
     r.volume_checked_materials.push_back(tag);
     const auto d = r.material_volume.find(tag), p = r.primal_material_volume.find(tag);
     const double dual = d == r.material_volume.end() ? 0.0 : d->second;
@@ -355,7 +343,27 @@ void check_volumes(const ClassifiedTetMesh& primal, double tol, ValidationReport
 
 }  // namespace
 
-ValidationReport validate(const PolyMesh& pm, const ClassifiedTetMesh* primal, double volume_rel_tol) {
+PrimalReference primal_reference(const ClassifiedTetMesh& primal) {
+  PrimalReference ref;
+  for (std::size_t v = 0; v < primal.num_vertices(); ++v)
+    if (const ModelRef c = primal.vertex_class(VertexId(v)); c.dim == 0) {
+      const Point3& x = primal.point(VertexId(v));
+      ref.model_vertices.insert({c.tag, x.x, x.y, x.z});
+    }
+  for (const ModelEntity& v : primal.model().entities[0])
+    for (std::int32_t e : v.bounds) ref.edge_vertex.insert({e, v.tag});
+  for (int dim = 0; dim < 3; ++dim)
+    for (const ModelEntity& e : primal.model().entities[dim]) ref.entities[dim].push_back(e.tag);
+  for (std::size_t t = 0; t < primal.num_tets(); ++t)
+    ref.material_volume[primal.region(TetId(t))] += primal.tet_volume(TetId(t));
+  ref.curved_regions = regions_with_curved_faces(primal);
+  return ref;
+}
+
+namespace {
+
+// validate() against `primal` (null: no model or volume check).
+ValidationReport validate_against(const PolyMesh& pm, const PrimalReference* primal, double volume_rel_tol) {
   ValidationReport r;
   r.cells = pm.num_cells();
   r.faces = pm.num_faces();
@@ -369,6 +377,18 @@ ValidationReport validate(const PolyMesh& pm, const ClassifiedTetMesh* primal, d
     check_volumes(*primal, volume_rel_tol, r);
   }
   return r;
+}
+
+}  // namespace
+
+ValidationReport validate(const PolyMesh& pm, const PrimalReference& primal, double volume_rel_tol) {
+  return validate_against(pm, &primal, volume_rel_tol);
+}
+
+ValidationReport validate(const PolyMesh& pm, const ClassifiedTetMesh* primal, double volume_rel_tol) {
+  if (!primal) return validate_against(pm, nullptr, volume_rel_tol);
+  const PrimalReference ref = primal_reference(*primal);
+  return validate_against(pm, &ref, volume_rel_tol);
 }
 
 namespace {

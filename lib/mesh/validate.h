@@ -3,9 +3,13 @@
 // volumes are double sums compared with a relative tolerance (the exact
 // identity is checked with rationals in tests/dual/dual_test.cpp).
 #pragma once
+#include <array>
 #include <cstdint>
 #include <map>
+#include <set>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "core/json.h"
@@ -109,8 +113,31 @@ std::string defects_sentence(const std::vector<Defect>& defects, std::size_t sho
 // [{"check", "meaning", "count", "items"}, ...]
 Json defects_json(const std::vector<Defect>& defects);
 
+// What validate() checks a dual against, from any primal (a tet mesh here,
+// a mixed PrimalMesh in quality/check_result.h): its model entities and its
+// per-material volumes.
+struct PrimalReference {
+  // Model vertices (tag, position), and (model edge tag, model vertex tag)
+  // for each model vertex that bounds a model edge.
+  std::set<std::tuple<std::int32_t, double, double, double>> model_vertices;
+  std::set<std::pair<std::int32_t, std::int32_t>> edge_vertex;
+  // The model entities of dimension 0, 1, 2 that must be represented, by tag
+  // (the order in which missing ones are listed).
+  std::array<std::vector<std::int32_t>, 3> entities;
+  std::map<std::int32_t, double> material_volume;  // sum of cell volumes (double)
+  // Regions bounded (external or interface) by a model face that is not
+  // planar, as decided exactly by whoever built the reference: their volume
+  // is not compared.
+  std::set<std::int32_t> curved_regions;
+};
+
+// The reference of a classified tet mesh (planarity: ModelEntity::planar).
+PrimalReference primal_reference(const ClassifiedTetMesh& primal);
+
 // primal may be null: then neither model-entity representation nor volumes
 // are checked. volume_rel_tol: see kVolumeRelTol.
+ValidationReport validate(const PolyMesh& mesh, const PrimalReference& primal,
+                          double volume_rel_tol = kVolumeRelTol);
 ValidationReport validate(const PolyMesh& mesh, const ClassifiedTetMesh* primal = nullptr,
                           double volume_rel_tol = kVolumeRelTol);
 

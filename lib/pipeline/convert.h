@@ -50,6 +50,7 @@ struct MixedPrimal {
   PrimalMesh mesh;
   std::array<std::size_t, kNumCellTypes> cell_counts{};
   ModelNames names;
+  PrimalReference reference;  // what its duals are validated against (quality/primal_reference.h)
 };
 
 struct ConvertResult {

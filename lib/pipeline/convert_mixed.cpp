@@ -11,7 +11,7 @@
 #include "mesh/cell_soup.h"
 #include "mesh/model_facets.h"
 #include "pipeline/run_stage.h"
-#include "predicates/predicates.h"
+#include "quality/primal_reference.h"
 #include "split/mixed_split.h"
 
 namespace polydual::pipeline_detail {
@@ -55,6 +55,7 @@ MixedPrimal classify_mixed(const TetSoup& soup, const ClassifyParams& params, st
   p.mesh = build_primal(cells, &warnings);
   if (tag_inferred_model_faces(cells, p.mesh, params.feature_angle_deg) > 0) p.mesh = build_primal(std::move(cells));
   p.names = group_names(soup);
+  p.reference = primal_reference(p.mesh);
   return p;
 }
 
@@ -80,55 +81,7 @@ PolyMesh mixed_dual_stages(ConvertResult& r, const PipelineParams& params, const
 }
 
 CheckResult check_mixed(const ConvertResult& r, bool with_validation) {
-  CheckResult c = check_mesh(r.mesh, nullptr, with_validation);
-  if (with_validation) check_mixed_volumes(r.mixed->mesh, c.validation);
-  return c;
-}
-
-// Signed volume of cell c: fans of tets from its vertex mean over its faces'
-// fans from their vertex means (double; outward loops give positive tets).
-double primal_cell_volume(const PrimalMesh& m, PrimalCellId c) {
-  const auto cv = m.cell_vertices(c);
-  Point3 g{0, 0, 0};
-  for (VertexId v : cv) g = g + m.point(v);
-  g = g * (1.0 / double(cv.size()));
-  double vol = 0;
-  const CellDescriptor& d = m.cell_descriptor(c);
-  for (int i = 0; i < d.num_faces; ++i) {
-    const int n = d.face_size[i];
-    Point3 fc{0, 0, 0};
-    for (int k = 0; k < n; ++k) fc = fc + m.point(cv[d.faces[i][k]]);
-    fc = fc * (1.0 / double(n));
-    for (int k = 0; k < n; ++k) {
-      const Point3 &a = m.point(cv[d.faces[i][k]]), &b = m.point(cv[d.faces[i][(k + 1) % n]]);
-      vol += dot(b - a, cross(fc - a, g - a));
-    }
-  }
-  return -vol / 6.0;
-}
-
-// Regions bounded (external or interface) by a model face that is not planar.
-std::set<std::int32_t> regions_with_curved_faces(const PrimalMesh& m) {
-  std::map<std::int32_t, PrimalFaceId> first;
-  std::set<std::int32_t> curved_tags, regions;
-  for (std::size_t f = 0; f < m.num_faces(); ++f) {
-    const PrimalFaceId fid(f);
-    if (m.face_class(fid).dim != 2) continue;
-    const auto [it, fresh] = first.emplace(m.face_class(fid).tag, fid);
-    const auto base = m.face_vertices(it->second);
-    for (VertexId v : m.face_vertices(fid))
-      if (orient3d(m.point(base[0]), m.point(base[1]), m.point(base[2]), m.point(v)) != Sign::Zero)
-        curved_tags.insert(m.face_class(fid).tag);
-  }
-  for (std::size_t f = 0; f < m.num_faces(); ++f) {
-    const PrimalFaceId fid(f);
-    if (m.face_class(fid).dim != 2 || !curved_tags.count(m.face_class(fid).tag)) continue;
-    const PrimalCellId c0 = m.face_cell(fid, 0), c1 = m.face_cell(fid, 1);
-    if (c1.valid() && m.cell_class(c0).tag == m.cell_class(c1).tag) continue;  // a fracture: cancels inside
-    regions.insert(m.cell_class(c0).tag);
-    if (c1.valid()) regions.insert(m.cell_class(c1).tag);
-  }
-  return regions;
+  return check_mesh(r.mesh, r.mixed->reference, with_validation);
 }
 
 // The optimiser's parameters on a mixed mesh: Auto untangles only, since the
@@ -165,25 +118,6 @@ void split_mixed(ConvertResult& r, const PipelineParams& params, const ConvertHo
 }
 
 }  // namespace
-
-void check_mixed_volumes(const PrimalMesh& m, ValidationReport& r) {
-  for (std::size_t c = 0; c < m.num_cells(); ++c)
-    r.primal_material_volume[m.cell_class(PrimalCellId(c)).tag] += primal_cell_volume(m, PrimalCellId(c));
-  const std::set<std::int32_t> curved = regions_with_curved_faces(m);
-  std::set<std::int32_t> materials;
-  for (const auto& [tag, v] : r.primal_material_volume) materials.insert(tag);
-  for (const auto& [tag, v] : r.material_volume) materials.insert(tag);
-  for (std::int32_t tag : materials) {
-    if (curved.count(tag)) continue;
-    r.volume_checked_materials.push_back(tag);
-    const auto d = r.material_volume.find(tag), p = r.primal_material_volume.find(tag);
-    const double dual = d == r.material_volume.end() ? 0.0 : d->second;
-    const double prim = p == r.primal_material_volume.end() ? 0.0 : p->second;
-    const double scale = std::max(std::fabs(dual), std::fabs(prim));
-    const double rel = scale > 0 ? std::fabs(dual - prim) / scale : 0.0;
-    if (!(rel <= r.volume_rel_tol)) r.volume_mismatches.push_back({tag, dual, prim, rel});
-  }
-}
 
 ModelRef mixed_vertex_class(const PrimalMesh& m, std::uint64_t in) {
   for (std::size_t v = 0; v < m.num_vertices(); ++v)

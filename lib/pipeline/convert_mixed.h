@@ -23,17 +23,6 @@ namespace polydual::pipeline_detail {
 // mesh kept. Sets r.mixed, r.mesh, r.check and the report's invalid_before. InputError for a surface mesh (no volume cell).
 void run_mixed_stages(ConvertResult& r, const TetSoup& soup, const PipelineParams& params, const ConvertHooks& hooks);
 
-// The primal's per-material volumes (cells cut into fans of tets from their
-// vertex mean and their faces' vertex means, double) against the dual's
-// (v.material_volume), into v as validate() does for tets. A material is
-// compared when each model face bounding it (external or interface) is planar
-// (EXACT: orient3d of every vertex of the model face against its first face's
-// first three vertices): its dual then fills it. The fans of a face shared by
-// two cells are the same from both sides, so a material's volume is that of
-// its boundary's fans and needs no planar face inside it (a hexahedron with
-// non-planar faces has no unique volume of its own, but the material has).
-void check_mixed_volumes(const PrimalMesh& m, ValidationReport& v);
-
 // The class of the primal vertex with input number `in` (PolyMesh::cell_primal),
 // or ModelRef{} when the primal has none.
 ModelRef mixed_vertex_class(const PrimalMesh& m, std::uint64_t in);

@@ -17,6 +17,26 @@ void count_verdicts(CheckResult& r) {
     r.decomposition_tets += static_cast<std::uint64_t>(v.total_tets);
   }
 }
+
+// check_mesh against `primal` (null: no model or volume check).
+CheckResult check_against(const PolyMesh& mesh, const PrimalReference* primal, bool with_validation) {
+  const auto t0 = std::chrono::steady_clock::now();
+  CheckResult r;
+  if (with_validation) r.validation = primal ? validate(mesh, *primal) : validate(mesh);
+  // The exact fallbacks are counted by shared counters (predicates.h): read
+  // the difference so concurrent checks of other meshes do not reset them.
+  const std::uint64_t exact0 = predicate_counters().star_exact.load();
+  std::vector<std::uint32_t> all(mesh.num_cells());
+  std::iota(all.begin(), all.end(), 0u);
+  r.verdicts.resize(mesh.num_cells());
+  r.cell_exact.assign(mesh.num_cells(), 0);
+  star_shaped_verdicts_of(mesh, all, r.verdicts, r.cell_exact);
+  r.exact_fallbacks = predicate_counters().star_exact.load() - exact0;
+  count_verdicts(r);
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
 }  // namespace
 
 CheckResult check_with_known_verdicts(const PolyMesh& mesh, const ClassifiedTetMesh* primal, CheckResult known) {
@@ -32,21 +52,16 @@ CheckResult check_with_known_verdicts(const PolyMesh& mesh, const ClassifiedTetM
 }
 
 CheckResult check_mesh(const PolyMesh& mesh, const ClassifiedTetMesh* primal, bool with_validation) {
+  if (!with_validation || !primal) return check_against(mesh, nullptr, with_validation);
   const auto t0 = std::chrono::steady_clock::now();
-  CheckResult r;
-  if (with_validation) r.validation = validate(mesh, primal);
-  // The exact fallbacks are counted by shared counters (predicates.h): read
-  // the difference so concurrent checks of other meshes do not reset them.
-  const std::uint64_t exact0 = predicate_counters().star_exact.load();
-  std::vector<std::uint32_t> all(mesh.num_cells());
-  std::iota(all.begin(), all.end(), 0u);
-  r.verdicts.resize(mesh.num_cells());
-  r.cell_exact.assign(mesh.num_cells(), 0);
-  star_shaped_verdicts_of(mesh, all, r.verdicts, r.cell_exact);
-  r.exact_fallbacks = predicate_counters().star_exact.load() - exact0;
-  count_verdicts(r);
+  const PrimalReference ref = primal_reference(*primal);
+  CheckResult r = check_against(mesh, &ref, true);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
+}
+
+CheckResult check_mesh(const PolyMesh& mesh, const PrimalReference& primal, bool with_validation) {
+  return check_against(mesh, &primal, with_validation);
 }
 
 Json CheckResult::to_json() const {

@@ -31,6 +31,9 @@ struct CheckResult {
 // verdicts are computed (validation stays default). The verdicts are exact
 // (the filtered star test of quality/star_verdict.h).
 CheckResult check_mesh(const PolyMesh& mesh, const ClassifiedTetMesh* primal, bool with_validation = true);
+// The same against any primal's reference (mesh/validate.h; a mixed primal's:
+// quality/primal_reference.h).
+CheckResult check_mesh(const PolyMesh& mesh, const PrimalReference& primal, bool with_validation = true);
 
 // The same result as check_mesh(mesh, primal, true) when `known` holds the
 // verdicts and per-cell exact fallbacks of this very mesh (a check_mesh of

@@ -43,7 +43,7 @@ TEST(CheckParallel, VolumesAndCountsEqualTheSerialSums) {
   // Points moved up to 1.6 spacings tangle some cells to a negative volume;
   // three materials, alternating by cell.
   for (std::size_t c = 0; c < m.num_cells(); ++c) m.cell_material[c] = 1 + static_cast<int>(c % 3);
-  const ValidationReport r = validate(m, nullptr);
+  const ValidationReport r = validate(m);
   std::map<std::int32_t, double> want;
   std::size_t negative = 0;
   for (std::size_t c = 0; c < m.num_cells(); ++c) {
