@@ -29,18 +29,38 @@ struct SweepMode {
   Untangling untangling = Untangling::None;
 };
 
-struct Context {
-  PolyMesh& mesh;
+// What the run fixes when it is set up: the parameters and what follows from
+// them, from the mesh's topology and from its starting points. Every kernel
+// reads it; nothing changes it after set-up (Context holds it const).
+struct RunSetup {
   const OptimParams& params;
   MeshStencil stencil;
-  std::vector<double> V0;                    // eq. 3 scale per cell, fixed for the run
-  std::unique_ptr<BoundaryConstraints> bc;   // null: boundary points fixed
-  std::vector<std::uint8_t> dof;             // per point: 0 fixed, 1 edge, 2 face, 3 free
-  std::vector<std::uint8_t> cell_valid;      // exact star test, kept current
+  std::vector<double> V0;          // eq. 3 scale per cell
+  std::vector<std::uint8_t> dof;   // per point: 0 fixed, 1 edge, 2 face, 3 free
+  std::span<const char> seed_cells;  // optimize()'s; empty: every point starts active
+  // The OpenFOAM gate's (params.foam_gate in the local schemes, else empty):
+  // per stencil loop its mesh face.
+  std::vector<std::uint32_t> loop_face;
+};
+
+// One optimize() run: the mesh it moves, its fixed set-up, and the state
+// the moves keep current (per-cell verdicts, qualities, energies, the gates'
+// state), with the report it writes.
+struct Context {
+  PolyMesh& mesh;
   std::chrono::steady_clock::time_point start;
   std::chrono::steady_clock::time_point lap_start;  // of the phase being timed
+  OptimReport* report = nullptr;
+  std::vector<std::pair<std::string, double>> setup_phases;  // until the report is attached
+  // null: boundary points fixed. Not part of the set-up: each point's current
+  // primitive (its parametric place on the model) moves with the point.
+  std::unique_ptr<BoundaryConstraints> bc;
+  std::vector<double> cell_quality;  // per cell, of the last record() (kept current by the gates)
+  const RunSetup setup;
+
+  // The run's state.
+  std::vector<std::uint8_t> cell_valid;      // exact star test, kept current
   QualityStats last_stats;                   // of the last record()
-  std::vector<double> cell_quality;          // per cell, of the last record()
   // record() is incremental: per cell the energy of the last record; a cell
   // none of whose points was touched since (every point a scheme may have
   // written: the local scheme's visited points, every point after a global
@@ -49,21 +69,20 @@ struct Context {
   std::vector<double> recorded_energy;
   std::vector<char> touched;  // per point, since the last record
   bool all_touched = true;    // every point (the first record, a global round)
-  OptimReport* report = nullptr;
   const ProgressFn* progress = nullptr;      // called after each record(); may be null
-  std::span<const char> seed_cells;          // optimize()'s; empty: every point starts active
   // Derivatives::Corrected: per cell the sum of d kappa_mod / d R over its
   // corners, per stencil loop the sum of d kappa_mod / d F over the loop's
   // corners (cell_energy_gradient), at the positions of the last refresh.
   std::vector<Vec3> grad_R, grad_F;
 
-  // known: the cells' exact star verdicts (empty, or not one per cell: tested here).
-  Context(PolyMesh& m, const ModelFacets* facets, const OptimParams& p, std::span<const CellVerdict> known = {});
+  // seeds: optimize()'s seed cells; known: the cells' exact star verdicts
+  // (empty, or not one per cell: tested here).
+  Context(PolyMesh& m, const ModelFacets* facets, const OptimParams& p, std::span<const char> seeds = {},
+          std::span<const CellVerdict> known = {});
   double seconds() const;
   // Adds the seconds since the last lap (or the start) to phase `name` of the
   // report (report->phases, or the setup's until the report is attached).
   void lap(const char* name);
-  std::vector<std::pair<std::string, double>> setup_phases;
   // Total objective (parallel per cell, serial sum: deterministic).
   double objective(std::span<const Point3> pts) const;
   // Appends an IterationRecord for the mesh's current state; re-evaluates only
@@ -73,7 +92,7 @@ struct Context {
   // untangling (Method::Untangle), whose stopping rule counts invalid cells;
   // its records hold the qualities only, and the first comes from the pass
   // that computes V0.
-  bool records_energy() const { return params.method != OptimParams::Method::Untangle; }
+  bool records_energy() const { return setup.params.method != OptimParams::Method::Untangle; }
   // Whether the run uses the centre gradients (Corrected derivatives in a
   // scheme that smooths; untangling never uses the corrected model).
   bool uses_centre_gradients() const;
@@ -88,20 +107,20 @@ struct Context {
   // a function of a cell's own points, so that the parallel sweeps may use
   // them (the cells of one point are one thread's).
   //  - OpenFOAM's checks (params.foam_gate, optim/foam_gate.h): a cell that
-  //    passes must keep passing (while foam_active). loop_face: per stencil loop its mesh face;
-  //    face_base: per mesh face its fan's base point; foam_ok: per cell.
+  //    passes must keep passing (while foam_active); foam_ok: per cell;
+  //    face_base: per mesh face its fan's base point (chosen again by the
+  //    repair as the points move).
   //  - The worst cell never gets worse: a valid cell may not rise above
   //    max(its quality before the move, quality_cap), quality_cap being the
   //    highest quality among the valid cells at the last record.
   //    cell_quality is kept current by every accepted move.
-  std::vector<std::uint32_t> loop_face;
-  std::vector<PointId> face_base;
   std::vector<std::uint8_t> foam_ok;
+  std::vector<PointId> face_base;
   double quality_cap = std::numeric_limits<double>::infinity();
   // Whether gates_accept applies the OpenFOAM gate now: in the repair, and
   // with params.foam_gate_sweeps in every move.
   bool foam_active = true;
-  // The OpenFOAM gate's state for the mesh as it is (no-op without foam_gate).
+  // The OpenFOAM gate's verdicts for the mesh as it is (no-op without foam_gate).
   void init_gates();
   // After p's move (its cells `cells`, already passing the star test for the
   // cells that were valid): whether both gates accept it. Fills q with the
@@ -114,6 +133,11 @@ struct Context {
   void refresh_foam(std::span<const std::uint32_t> cells);
   // Number of cells failing the OpenFOAM gate.
   std::size_t foam_failing() const;
+
+ private:
+  // The set-up (the constructor's): stencil, dof, V0 (with the qualities
+  // into cell_quality when only untangling), the OpenFOAM gate's loop faces.
+  RunSetup set_up(const OptimParams& p, std::span<const char> seeds);
 };
 
 void run_local(Context& ctx);

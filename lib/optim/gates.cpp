@@ -14,46 +14,45 @@
 namespace polydual::optim_detail {
 
 void Context::init_gates() {
-  if (!params.foam_gate) return;
-  loop_face = stencil_loop_faces(mesh, stencil);
+  if (!setup.params.foam_gate) return;
   face_base.clear();
-  choose_foam_bases(mesh, stencil, mesh.points, face_base);
-  foam_ok.assign(stencil.num_cells(), 0);
-  std::vector<std::uint32_t> all(stencil.num_cells());
+  choose_foam_bases(mesh, setup.stencil, mesh.points, face_base);
+  foam_ok.assign(setup.stencil.num_cells(), 0);
+  std::vector<std::uint32_t> all(setup.stencil.num_cells());
   for (std::uint32_t c = 0; c < all.size(); ++c) all[c] = c;
   refresh_foam(all);
   lap("foam_gate");
   // Without foam_gate_sweeps the sweeps, the polish and the min-max descent
   // move freely (on sliver meshes the gate in every sweep held the worst cell
   // at 4x and the mean at 1.8x); the repair then applies it (repair_foam).
-  foam_active = params.foam_gate_sweeps;
+  foam_active = setup.params.foam_gate_sweeps;
 }
 
 bool Context::gates_accept(std::span<const std::uint32_t> cells, std::vector<double>& q) const {
   q.clear();
   for (std::uint32_t c : cells) {
     // Floating point, a measure (the star test decided validity already).
-    q.push_back(polydual::cell_quality(stencil, c, params.metric, mesh.points));
+    q.push_back(polydual::cell_quality(setup.stencil, c, setup.params.metric, mesh.points));
     if (cell_valid[c] && !(q.back() <= std::max(cell_quality[c], quality_cap))) return false;
   }
-  if (!params.foam_gate || !foam_active) return true;
+  if (!setup.params.foam_gate || !foam_active) return true;
   for (std::uint32_t c : cells)
-    if (foam_ok[c] && !foam_cell_ok(stencil, c, mesh.points, face_base, loop_face)) return false;
+    if (foam_ok[c] && !foam_cell_ok(setup.stencil, c, mesh.points, face_base, setup.loop_face)) return false;
   return true;
 }
 
 void Context::gates_commit(std::span<const std::uint32_t> cells, std::span<const double> q) {
   for (std::size_t i = 0; i < cells.size(); ++i) cell_quality[cells[i]] = q[i];
-  if (!params.foam_gate || !foam_active) return;
+  if (!setup.params.foam_gate || !foam_active) return;
   for (std::uint32_t c : cells)
-    if (!foam_ok[c]) foam_ok[c] = foam_cell_ok(stencil, c, mesh.points, face_base, loop_face);
+    if (!foam_ok[c]) foam_ok[c] = foam_cell_ok(setup.stencil, c, mesh.points, face_base, setup.loop_face);
 }
 
 void Context::refresh_foam(std::span<const std::uint32_t> cells) {
-  if (!params.foam_gate) return;
+  if (!setup.params.foam_gate) return;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells.size(), 64), [&](const auto& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i)
-      foam_ok[cells[i]] = foam_cell_ok(stencil, cells[i], mesh.points, face_base, loop_face);
+      foam_ok[cells[i]] = foam_cell_ok(setup.stencil, cells[i], mesh.points, face_base, setup.loop_face);
   });
 }
 
@@ -78,14 +77,14 @@ double violation(const Context& ctx, std::span<const std::uint32_t> cells, std::
   *work += cells.size();
   double v = 0;
   for (std::uint32_t c : cells)
-    if (!ctx.foam_ok[c]) v += foam_cell_violation(ctx.stencil, c, ctx.mesh.points, ctx.face_base, ctx.loop_face);
+    if (!ctx.foam_ok[c]) v += foam_cell_violation(ctx.setup.stencil, c, ctx.mesh.points, ctx.face_base, ctx.setup.loop_face);
   return v;
 }
 
 // Exact: every valid cell among `cells` stays valid (the star test).
 bool keeps_valid(const Context& ctx, std::span<const std::uint32_t> cells, std::vector<Point3>& scratch) {
   for (std::uint32_t c : cells)
-    if (ctx.cell_valid[c] && !star_shaped_verdict(ctx.stencil, c, ctx.mesh.points, true, scratch).valid) return false;
+    if (ctx.cell_valid[c] && !star_shaped_verdict(ctx.setup.stencil, c, ctx.mesh.points, true, scratch).valid) return false;
   return true;
 }
 
@@ -94,7 +93,7 @@ bool keeps_valid(const Context& ctx, std::span<const std::uint32_t> cells, std::
 // keeps the valid cells valid (exact) and both gates accept.
 bool try_repair_move(Context& ctx, PointId p, int k, Point3 x, double v0, std::vector<double>& q,
                      std::vector<Point3>& scratch, std::uint64_t* work) {
-  const auto cells = ctx.stencil.cells_of(p);
+  const auto cells = ctx.setup.stencil.cells_of(p);
   std::uint32_t prim = BoundaryConstraints::kNone;
   if (k < 3) x = ctx.bc->project(p, x, &prim);
   Point3& slot = ctx.mesh.points[p.idx];
@@ -104,7 +103,7 @@ bool try_repair_move(Context& ctx, PointId p, int k, Point3 x, double v0, std::v
     if (k < 3) ctx.bc->commit(p, prim);
     ctx.gates_commit(cells, q);
     for (std::uint32_t c : cells)
-      if (!ctx.cell_valid[c]) ctx.cell_valid[c] = star_shaped_verdict(ctx.stencil, c, ctx.mesh.points, true, scratch).valid;
+      if (!ctx.cell_valid[c]) ctx.cell_valid[c] = star_shaped_verdict(ctx.setup.stencil, c, ctx.mesh.points, true, scratch).valid;
     ctx.touched[p.idx] = 1;
     return true;
   }
@@ -118,14 +117,14 @@ bool try_repair_move(Context& ctx, PointId p, int k, Point3 x, double v0, std::v
 // whether p moved.
 bool repair_point(Context& ctx, PointId p, std::vector<double>& q, std::vector<Point3>& scratch,
                   std::uint64_t* work) {
-  const int k = ctx.dof[p.idx];
+  const int k = ctx.setup.dof[p.idx];
   if (k == 0) return false;
   if (ctx.bc) ctx.bc->ensure(p);
-  const auto cells = ctx.stencil.cells_of(p);
+  const auto cells = ctx.setup.stencil.cells_of(p);
   const double v0 = violation(ctx, cells, work);
   if (!(v0 > 0)) return false;
   double vol = 0;
-  for (std::uint32_t c : cells) vol += ctx.V0[c];
+  for (std::uint32_t c : cells) vol += ctx.setup.V0[c];
   const double ell = std::cbrt(vol / static_cast<double>(cells.size()));
   Vec3 B[3];
   ctx.basis(p, B);
@@ -152,17 +151,17 @@ bool repair_point(Context& ctx, PointId p, std::vector<double>& q, std::vector<P
 
 IterationRecord repair_foam(Context& ctx) {
   IterationRecord counts;
-  if (!ctx.params.foam_gate) return counts;
+  if (!ctx.setup.params.foam_gate) return counts;
   std::vector<double> q;
   std::vector<Point3> scratch;
   std::vector<std::uint32_t> failing;
   ctx.foam_active = true;
   std::uint64_t work = 0;
-  const double budget = kRepairBudget * static_cast<double>(ctx.stencil.point_cells.size());
+  const double budget = kRepairBudget * static_cast<double>(ctx.setup.stencil.point_cells.size());
   for (int round = 0; round < kRepairRounds; ++round) {
     // A new base where one passes with both centres now, then every verdict.
-    choose_foam_bases(ctx.mesh, ctx.stencil, ctx.mesh.points, ctx.face_base);
-    std::vector<std::uint32_t> all(ctx.stencil.num_cells());
+    choose_foam_bases(ctx.mesh, ctx.setup.stencil, ctx.mesh.points, ctx.face_base);
+    std::vector<std::uint32_t> all(ctx.setup.stencil.num_cells());
     for (std::uint32_t c = 0; c < all.size(); ++c) all[c] = c;
     ctx.refresh_foam(all);
     failing.clear();
@@ -171,7 +170,7 @@ IterationRecord repair_foam(Context& ctx) {
     if (failing.empty()) break;
     std::uint64_t moved = 0;
     for (std::uint32_t c : failing)
-      for (PointId p : ctx.stencil.points_of(c)) {
+      for (PointId p : ctx.setup.stencil.points_of(c)) {
         if (ctx.foam_ok[c] || static_cast<double>(work) > budget) break;
         ++counts.visited;
         moved += repair_point(ctx, p, q, scratch, &work);
@@ -195,8 +194,8 @@ void list_worst_cells(const Context& ctx, OptimReport& rep) {
     WorstCell w;
     w.cell = c;
     w.quality = quality;
-    for (PointId p : ctx.stencil.points_of(c)) {
-      const int dof = ctx.dof[p.idx];
+    for (PointId p : ctx.setup.stencil.points_of(c)) {
+      const int dof = ctx.setup.dof[p.idx];
       if (dof == 0) w.pinned.push_back({p, ctx.mesh.point_class[p.idx]});
       w.on_edges += dof == 1;
       w.on_faces += dof == 2;

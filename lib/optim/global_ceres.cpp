@@ -49,7 +49,7 @@ struct Frames {
 class GlobalObjective {
  public:
   GlobalObjective(const Context& ctx, const Frames& fr) : ctx_(ctx), fr_(fr), pts_(ctx.mesh.points) {
-    const MeshStencil& s = ctx.stencil;
+    const MeshStencil& s = ctx.setup.stencil;
     cell_grad_.resize(s.cell_pts.size());
     energy_.resize(s.num_cells());
     // For each point the slots of cell_grad_ holding its per-cell gradients.
@@ -70,11 +70,11 @@ class GlobalObjective {
       for (std::uint32_t j = fr_.off[i]; j < fr_.off[i + 1]; ++j) x += t[j] * fr_.basis[i][j - fr_.off[i]];
       pts_[fr_.free[i].idx] = x;
     }
-    const MeshStencil& s = ctx_.stencil;
+    const MeshStencil& s = ctx_.setup.stencil;
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, s.num_cells(), 128), [&](const auto& r) {
       for (std::size_t c = r.begin(); c != r.end(); ++c)
-        energy_[c] = cell_energy_gradient(s, static_cast<std::uint32_t>(c), ctx_.params.metric, pts_,
-                                          ctx_.V0[c], ctx_.params.c,
+        energy_[c] = cell_energy_gradient(s, static_cast<std::uint32_t>(c), ctx_.setup.params.metric, pts_,
+                                          ctx_.setup.V0[c], ctx_.setup.params.c,
                                           gradient ? cell_grad_.data() + s.cell_pt_off[c] : nullptr);
     });
     double sum = 0;  // serial: deterministic
@@ -125,7 +125,7 @@ void check_cells(Context& ctx, const std::vector<std::uint32_t>& cells, std::vec
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells.size(), 256), [&](const auto& r) {
     std::vector<Point3> scratch;
     for (std::size_t i = r.begin(); i != r.end(); ++i)
-      valid_now[cells[i]] = star_shaped_verdict(ctx.stencil, cells[i], ctx.mesh.points, true, scratch).valid;
+      valid_now[cells[i]] = star_shaped_verdict(ctx.setup.stencil, cells[i], ctx.mesh.points, true, scratch).valid;
   });
 }
 
@@ -146,7 +146,7 @@ std::size_t freeze_invalidating_points(Context& ctx, const PointCells& pc, const
   while (!bad.empty()) {
     recheck.clear();
     for (std::uint32_t c : bad)
-      for (PointId p : ctx.stencil.points_of(c)) {
+      for (PointId p : ctx.setup.stencil.points_of(c)) {
         if (frozen[p.idx] || ctx.mesh.points[p.idx] == before[p.idx]) continue;
         frozen[p.idx] = 1;
         ++count;
@@ -172,7 +172,7 @@ std::vector<double> solve_round(const Context& ctx, const Frames& fr) {
   GlobalObjective objective(ctx, fr);
   const lbfgs_module::Problem problem{t.size(), &objective, &GlobalObjective::evaluate};
   lbfgs_module::Options opt;
-  opt.max_iterations = ctx.params.global_iterations_per_round;
+  opt.max_iterations = ctx.setup.params.global_iterations_per_round;
   opt.function_tolerance = 1e-12;
   opt.parameter_tolerance = 1e-12;
   std::string error;
@@ -189,7 +189,7 @@ void place_points(Context& ctx, const Frames& fr, const std::vector<double>& t, 
       const PointId p = fr.free[i];
       Point3 x = fr.origin[i];
       for (std::uint32_t j = fr.off[i]; j < fr.off[i + 1]; ++j) x += (alpha * t[j]) * fr.basis[i][j - fr.off[i]];
-      if (ctx.dof[p.idx] < 3) x = ctx.bc->project(p, x, &prim[i]);
+      if (ctx.setup.dof[p.idx] < 3) x = ctx.bc->project(p, x, &prim[i]);
       ctx.mesh.points[p.idx] = x;
     }
   });
@@ -198,19 +198,19 @@ void place_points(Context& ctx, const Frames& fr, const std::vector<double>& t, 
 }  // namespace
 
 void run_global(Context& ctx) {
-  const auto& prm = ctx.params;
+  const auto& prm = ctx.setup.params;
   Frames fr;
   fr.off.push_back(0);
   for (std::size_t i = 0; i < ctx.mesh.num_points(); ++i)
-    if (ctx.dof[i] > 0) {
+    if (ctx.setup.dof[i] > 0) {
       fr.free.push_back(PointId(i));
-      fr.off.push_back(fr.off.back() + ctx.dof[i]);
+      fr.off.push_back(fr.off.back() + ctx.setup.dof[i]);
     }
   if (fr.free.empty()) return;
   fr.origin.resize(fr.free.size());
   fr.basis.resize(fr.free.size());
   const std::size_t nc = ctx.mesh.num_cells();
-  const PointCells pc(ctx.stencil, ctx.mesh.num_points());
+  const PointCells pc(ctx.setup.stencil, ctx.mesh.num_points());
   std::vector<std::uint32_t> all_cells(nc);
   for (std::uint32_t c = 0; c < nc; ++c) all_cells[c] = c;
   std::vector<Point3> before;
@@ -241,7 +241,7 @@ void run_global(Context& ctx) {
     for (std::size_t i = 0; i < fr.free.size(); ++i) {
       const PointId p = fr.free[i];
       if (frozen[p.idx]) continue;
-      if (ctx.dof[p.idx] < 3) ctx.bc->commit(p, prim[i]);
+      if (ctx.setup.dof[p.idx] < 3) ctx.bc->commit(p, prim[i]);
       if (!(ctx.mesh.points[p.idx] == before[p.idx])) ++ctx.report->vertex_updates;
     }
     ctx.cell_valid = valid_now;

@@ -41,13 +41,13 @@ class VertexNewton {
   // Up to params.newton_steps Newton steps at p; returns the number accepted and
   // the total displacement in *moved.
   int optimise(PointId p, const SweepMode& mode, double* moved) {
-    const auto& prm = ctx_.params;
+    const auto& prm = ctx_.setup.params;
     Point3* pts = ctx_.mesh.points.data();
-    const LocalObjective obj{ctx_.stencil, pts, ctx_.V0.data(), prm.metric, prm.c, p};
-    const int k = ctx_.dof[p.idx];
-    const auto cells = ctx_.stencil.cells_of(p);
+    const LocalObjective obj{ctx_.setup.stencil, pts, ctx_.setup.V0.data(), prm.metric, prm.c, p};
+    const int k = ctx_.setup.dof[p.idx];
+    const auto cells = ctx_.setup.stencil.cells_of(p);
     double v0 = 0;
-    for (std::uint32_t c : cells) v0 += ctx_.V0[c];
+    for (std::uint32_t c : cells) v0 += ctx_.setup.V0[c];
     const double ell = std::cbrt(v0 / static_cast<double>(cells.size()));  // local length
     const double h = prm.fd_step * ell;
     int accepted = 0;
@@ -68,14 +68,14 @@ class VertexNewton {
       const bool corrected = der == OptimParams::Derivatives::Corrected;
       const bool lagged = der == OptimParams::Derivatives::Lagged || corrected;
       if (lagged)
-        lagged_.build(ctx_.stencil, pts, ctx_.V0.data(), prm.metric, p, corrected ? ctx_.grad_R.data() : nullptr,
+        lagged_.build(ctx_.setup.stencil, pts, ctx_.setup.V0.data(), prm.metric, p, corrected ? ctx_.grad_R.data() : nullptr,
                       corrected ? ctx_.grad_F.data() : nullptr);
       // Face flatness (optim/planarity.h), weighted by prm.planarity: added to
       // the value, and its derivatives by central differences to g and H.
       const bool flat = prm.planarity > 0;
-      if (flat) planarity_.build(ctx_.stencil, p);
+      if (flat) planarity_.build(ctx_.setup.stencil, p);
       auto eval = [&](const Point3& x) {
-        const double e = flat ? prm.planarity * planarity_.value(ctx_.stencil, pts, x) : 0.0;
+        const double e = flat ? prm.planarity * planarity_.value(ctx_.setup.stencil, pts, x) : 0.0;
         if (lagged) return lagged_.value(x, prm.c) + e;
         const double xa[3] = {x.x, x.y, x.z};
         return obj(xa) + e;
@@ -101,7 +101,7 @@ class VertexNewton {
       ctx_.gates_commit(cells, q_);
       for (std::uint32_t c : cells)
         if (!ctx_.cell_valid[c])
-          ctx_.cell_valid[c] = star_shaped_verdict(ctx_.stencil, c, ctx_.mesh.points, true, scratch_).valid;
+          ctx_.cell_valid[c] = star_shaped_verdict(ctx_.setup.stencil, c, ctx_.mesh.points, true, scratch_).valid;
       ++accepted;
       const double disp = norm(xt - o);
       *moved += disp;
@@ -116,7 +116,7 @@ class VertexNewton {
   template <class X, class F>
   double derivatives(PointId p, const Point3& o, const Vec3* B, int k, double h, const LocalObjective& obj,
                      const X& x_of, const F& f, Vec& g, Mat& H) {
-    const auto& prm = ctx_.params;
+    const auto& prm = ctx_.setup.params;
     const bool flat = prm.planarity > 0;
     const bool lagged =
         der_ == OptimParams::Derivatives::Lagged || der_ == OptimParams::Derivatives::Corrected;
@@ -150,7 +150,7 @@ class VertexNewton {
     const bool over = omega > 1.0;
     double alpha = over ? omega : 1.0;
     bool ok = false;
-    for (int hv = over ? -1 : 0; hv <= ctx_.params.max_halvings && !ok; ++hv, alpha = hv <= 0 ? 1.0 : alpha * 0.5) {
+    for (int hv = over ? -1 : 0; hv <= ctx_.setup.params.max_halvings && !ok; ++hv, alpha = hv <= 0 ? 1.0 : alpha * 0.5) {
       double t[3] = {0, 0, 0};
       for (int i = 0; i < k; ++i) t[i] = alpha * d[i];
       xt = x_of(t);
@@ -176,7 +176,7 @@ class VertexNewton {
   // recover poorly shaped cells (on a mesh just untangled its max quality
   // oscillates), while the full model does; such points are few.
   OptimParams::Derivatives model_of(std::span<const std::uint32_t> cells, const SweepMode& mode) const {
-    const OptimParams::Derivatives d = ctx_.params.derivatives;
+    const OptimParams::Derivatives d = ctx_.setup.params.derivatives;
     if (d != OptimParams::Derivatives::Corrected) return d;
     if (mode.untangling == SweepMode::Untangling::Lagged) return OptimParams::Derivatives::Lagged;
     if (mode.untangling == SweepMode::Untangling::FullWhereInvalid) {
@@ -192,7 +192,7 @@ class VertexNewton {
   bool keeps_valid(std::span<const std::uint32_t> cells) {
     for (std::uint32_t c : cells)
       if (ctx_.cell_valid[c] &&
-          !star_shaped_verdict(ctx_.stencil, c, ctx_.mesh.points, true, scratch_).valid)
+          !star_shaped_verdict(ctx_.setup.stencil, c, ctx_.mesh.points, true, scratch_).valid)
         return false;
     return true;
   }
@@ -200,12 +200,12 @@ class VertexNewton {
   // Analytic gradient and Hessian in x (local_objective_derivatives), projected
   // on the parametric space: g_t = B^T g, H_t = B^T H B (x = o + B t is affine).
   double analytic_derivatives(PointId p, const Vec3* B, int k, Vec& g, Mat& H) const {
-    const auto& prm = ctx_.params;
+    const auto& prm = ctx_.setup.params;
     double gx[3], Hx[9];
     const bool lagged = der_ == OptimParams::Derivatives::Lagged || der_ == OptimParams::Derivatives::Corrected;
     const double f0 = lagged
                           ? lagged_.derivatives(ctx_.mesh.points[p.idx], prm.c, gx, Hx)
-                          : local_objective_derivatives(ctx_.stencil, ctx_.mesh.points.data(), ctx_.V0.data(),
+                          : local_objective_derivatives(ctx_.setup.stencil, ctx_.mesh.points.data(), ctx_.setup.V0.data(),
                                                         prm.metric, prm.c, p, gx, Hx);
     Vec3 HB[3];
     for (int i = 0; i < k; ++i)
@@ -221,7 +221,7 @@ class VertexNewton {
   template <class X>
   void add_planarity(const X& x_of, int k, double h, double w, double& f0, Vec& g, Mat& H) const {
     const Point3* pts = ctx_.mesh.points.data();
-    auto e = [&](const double* t) { return planarity_.value(ctx_.stencil, pts, x_of(t)); };
+    auto e = [&](const double* t) { return planarity_.value(ctx_.setup.stencil, pts, x_of(t)); };
     const double zero[3] = {0, 0, 0};
     const double e0 = e(zero);
     Vec ge = Vec::Zero();
@@ -356,7 +356,7 @@ ColourClasses colour_points(const Context& ctx, bool surface, const std::vector<
   std::vector<std::uint32_t> members;
   std::uint32_t nb = 0, in_block = 0;
   for (std::size_t i = 0; i < np; ++i) {
-    const int k = ctx.dof[i];
+    const int k = ctx.setup.dof[i];
     if (k == 0 || surface != (k < 3) || (only && !(*only)[i])) continue;
     if (in_block == 0) ++nb;
     block[i] = nb - 1;
@@ -367,12 +367,12 @@ ColourClasses colour_points(const Context& ctx, bool surface, const std::vector<
   // order does not matter: the colouring below only stamps).
   std::vector<std::uint32_t> cells;
   if (!only) {
-    cells.resize(ctx.stencil.num_cells());
+    cells.resize(ctx.setup.stencil.num_cells());
     for (std::uint32_t c = 0; c < cells.size(); ++c) cells[c] = c;
   } else {
-    std::vector<char> seen(ctx.stencil.num_cells(), 0);
+    std::vector<char> seen(ctx.setup.stencil.num_cells(), 0);
     for (std::uint32_t p : members)
-      for (std::uint32_t c : ctx.stencil.cells_of(PointId(p)))
+      for (std::uint32_t c : ctx.setup.stencil.cells_of(PointId(p)))
         if (!seen[c]) { seen[c] = 1; cells.push_back(c); }
   }
   // Blocks sharing a cell are neighbours (a block may be listed more than
@@ -381,7 +381,7 @@ ColourClasses colour_points(const Context& ctx, bool surface, const std::vector<
   std::vector<std::uint32_t> in_cell, listed(nb, kNone);  // listed[b] == c: b already in c's list
   for (std::uint32_t c : cells) {
     in_cell.clear();
-    for (PointId q : ctx.stencil.points_of(c)) {
+    for (PointId q : ctx.setup.stencil.points_of(c)) {
       const std::uint32_t b = block[q.idx];
       if (b != kNone && listed[b] != c) { listed[b] = c; in_cell.push_back(b); }
     }
@@ -455,11 +455,11 @@ void sweep_points(Context& ctx, const Passes& passes, tbb::enumerable_thread_spe
           n_upd += static_cast<std::uint64_t>(n);
           n_full += solver.used_full_model();
           if (n == 0) continue;
-          const auto cells = ctx.stencil.cells_of(p);
+          const auto cells = ctx.setup.stencil.cells_of(p);
           double v0 = 0;
-          for (std::uint32_t c : cells) v0 += ctx.V0[c];
+          for (std::uint32_t c : cells) v0 += ctx.setup.V0[c];
           const double ell = std::cbrt(v0 / static_cast<double>(cells.size()));
-          if (moved > ctx.params.settle_move * ell)
+          if (moved > ctx.setup.params.settle_move * ell)
             for (std::uint32_t c : cells) last_change[c] = sweep;
         }
         updates += n_upd;
@@ -492,8 +492,8 @@ void grow_layers(const Context& ctx, std::vector<char>& near, int reach) {
   for (int layer = 0; layer < reach; ++layer) {
     next.clear();
     for (std::uint32_t c : front)
-      for (PointId q : ctx.stencil.points_of(c))
-        for (std::uint32_t d : ctx.stencil.cells_of(q))
+      for (PointId q : ctx.setup.stencil.points_of(c))
+        for (std::uint32_t d : ctx.setup.stencil.cells_of(q))
           if (!near[d]) { near[d] = 1; next.push_back(d); }
     front.swap(next);
   }
@@ -527,7 +527,7 @@ constexpr double kPolishFullModelShare = 0.8;
 
 void polish_worst(Context& ctx, const Passes& passes, tbb::enumerable_thread_specific<VertexNewton>& solvers,
                   SweepMode mode, int sweep, std::vector<int>& last_change) {
-  const auto& prm = ctx.params;
+  const auto& prm = ctx.setup.params;
   const double mean = ctx.last_stats.mean;
   std::vector<char> bad(ctx.mesh.num_cells(), 0);
   std::vector<std::uint32_t> region;  // the cells of the points of bad cells
@@ -545,15 +545,15 @@ void polish_worst(Context& ctx, const Passes& passes, tbb::enumerable_thread_spe
     saved.clear();
     for (std::size_t c = 0; c < bad.size(); ++c)
       if (bad[c])
-        for (PointId q : ctx.stencil.points_of(static_cast<std::uint32_t>(c))) {
+        for (PointId q : ctx.setup.stencil.points_of(static_cast<std::uint32_t>(c))) {
           saved.emplace_back(q.idx, ctx.mesh.points[q.idx]);
-          for (std::uint32_t d : ctx.stencil.cells_of(q)) region.push_back(d);
+          for (std::uint32_t d : ctx.setup.stencil.cells_of(q)) region.push_back(d);
         }
     if (saved.empty()) break;
     std::sort(region.begin(), region.end());
     region.erase(std::unique(region.begin(), region.end()), region.end());
     auto active = [&](PointId p) {
-      for (std::uint32_t c : ctx.stencil.cells_of(p))
+      for (std::uint32_t c : ctx.setup.stencil.cells_of(p))
         if (bad[c]) return true;
       return false;
     };
@@ -612,7 +612,7 @@ void mark_near_invalid(const Context& ctx, std::vector<char>& near) {
 void mark_bad_tet_points(const Context& ctx, std::vector<char>& focus) {
   focus.assign(ctx.mesh.num_points(), 0);
   std::vector<std::uint32_t> invalid;
-  for (std::uint32_t c = 0; c < ctx.stencil.num_cells(); ++c)
+  for (std::uint32_t c = 0; c < ctx.setup.stencil.num_cells(); ++c)
     if (!ctx.cell_valid[c]) invalid.push_back(c);
   // Each invalid cell's bad tets in parallel (exact, as cell_valid), marked
   // serially (the marks are the same in any order).
@@ -620,11 +620,11 @@ void mark_bad_tet_points(const Context& ctx, std::vector<char>& focus) {
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, invalid.size(), 16), [&](const auto& r) {
     std::vector<Point3> scratch;
     for (std::size_t i = r.begin(); i != r.end(); ++i)
-      star_shaped_bad_tets(ctx.stencil, invalid[i], ctx.mesh.points, scratch, bad[i]);
+      star_shaped_bad_tets(ctx.setup.stencil, invalid[i], ctx.mesh.points, scratch, bad[i]);
   });
   for (const auto& tets : bad)
     for (const auto& [j, i] : tets) {
-      const auto loop = ctx.stencil.loop(j);
+      const auto loop = ctx.setup.stencil.loop(j);
       focus[loop[i].idx] = 1;
       focus[loop[i + 1 == loop.size() ? 0 : i + 1].idx] = 1;
     }
@@ -641,10 +641,10 @@ std::vector<char> untangling_candidates(const Context& ctx, bool first, const st
                                         const std::vector<int>& last_change, int sweep,
                                         const std::vector<char>& near_invalid) {
   std::vector<char> cand = first ? focus : std::vector<char>(ctx.mesh.num_points(), 0);
-  for (std::uint32_t c = 0; c < ctx.stencil.num_cells(); ++c) {
+  for (std::uint32_t c = 0; c < ctx.setup.stencil.num_cells(); ++c) {
     const bool ring = last_change[c] == sweep - 1 && !near_invalid.empty() && near_invalid[c];
     if ((!first && !ctx.cell_valid[c]) || ring)
-      for (PointId q : ctx.stencil.points_of(c)) cand[q.idx] = 1;
+      for (PointId q : ctx.setup.stencil.points_of(c)) cand[q.idx] = 1;
   }
   return cand;
 }
@@ -710,13 +710,13 @@ class LocalRun {
 };
 
 LocalRun::LocalRun(Context& ctx)
-    : ctx_(ctx), prm_(ctx.params), solvers_([&ctx] { return VertexNewton(ctx); }),
+    : ctx_(ctx), prm_(ctx.setup.params), solvers_([&ctx] { return VertexNewton(ctx); }),
       block_(ctx.mesh.num_points(), kNoBlock), last_change_(ctx.mesh.num_cells(), kNever),
-      untangle_only_(ctx.params.method == OptimParams::Method::Untangle),
+      untangle_only_(ctx.setup.params.method == OptimParams::Method::Untangle),
       untangle_left_(ctx.report->iterations.back().invalid > 0
-                         ? (untangle_only_ ? ctx.params.max_iter : ctx.params.untangle_sweeps)
+                         ? (untangle_only_ ? ctx.setup.params.max_iter : ctx.setup.params.untangle_sweeps)
                          : 0),
-      seeded_(!ctx.seed_cells.empty()), f_prev_(ctx.report->iterations.back().objective),
+      seeded_(!ctx.setup.seed_cells.empty()), f_prev_(ctx.report->iterations.back().objective),
       fewest_invalid_(ctx.report->iterations.back().invalid), first_smoothing_(!seeded_) {}
 
 const Passes& LocalRun::whole_passes() {
@@ -732,10 +732,10 @@ const Passes& LocalRun::whole_passes() {
 void LocalRun::bound_seeded_run() {
   const std::size_t nc = ctx_.mesh.num_cells();
   reach_.assign(nc, 0);
-  for (std::size_t c = 0; c < nc; ++c) reach_[c] = ctx_.seed_cells[c] || !ctx_.cell_valid[c];
+  for (std::size_t c = 0; c < nc; ++c) reach_[c] = ctx_.setup.seed_cells[c] || !ctx_.cell_valid[c];
   grow_layers(ctx_, reach_, kSeedReach);
   for (std::size_t c = 0; c < nc; ++c)
-    if (ctx_.seed_cells[c]) last_change_[c] = 0;
+    if (ctx_.setup.seed_cells[c]) last_change_[c] = 0;
 }
 
 // The sweep's relaxation and derivative model (mode_, handed to every visit).
@@ -778,7 +778,7 @@ const IterationRecord& LocalRun::run_sweep(int sweep, bool untangling) {
   if (first_untangling) mark_bad_tet_points(ctx_, focus_);
   auto active = [&](PointId p) {
     bool a = full_sweep_ || (first_untangling && focus_[p.idx]), in_reach = !seeded_;
-    for (std::uint32_t c : ctx_.stencil.cells_of(p)) {
+    for (std::uint32_t c : ctx_.setup.stencil.cells_of(p)) {
       a = a || (!first_untangling && !ctx_.cell_valid[c]) ||
           (last_change_[c] >= since &&
            (!untangling || (last_change_[c] < sweep && !near_invalid_.empty() && near_invalid_[c])));

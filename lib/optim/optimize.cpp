@@ -14,39 +14,56 @@
 #include "core/interrupt.h"
 #include "core/param_range.h"
 #include "optim/context.h"
+#include "optim/foam_gate.h"
 #include "optim/objective.h"
 #include "quality/star_verdict.h"
 
 namespace polydual {
 namespace optim_detail {
 
-Context::Context(PolyMesh& m, const ModelFacets* facets, const OptimParams& p,
-                 std::span<const CellVerdict> known)
-    : mesh(m), params(p), start(std::chrono::steady_clock::now()), lap_start(start) {
-  stencil = build_stencil(m, p.method == OptimParams::Method::Global);  // its gradients need loop_local
-  lap("stencil");
-  // The local schemes move only the points they visit and ensure() each
-  // first (VertexNewton::optimise): their initial primitives are found then.
-  if (facets)
-    bc = std::make_unique<BoundaryConstraints>(*facets, m, p.method != OptimParams::Method::Global, p.keep_boundary);
-  lap("constraints");
-  dof.assign(m.num_points(), 0);
-  for (std::size_t i = 0; i < m.num_points(); ++i) {
-    const int d = m.point_class[i].dim;
+// The local schemes move only the points they visit and ensure() each
+// first (VertexNewton::optimise): their initial primitives are found then.
+std::unique_ptr<BoundaryConstraints> make_constraints(const ModelFacets* facets, const PolyMesh& m,
+                                                      const OptimParams& p) {
+  if (!facets) return nullptr;
+  return std::make_unique<BoundaryConstraints>(*facets, m, p.method != OptimParams::Method::Global, p.keep_boundary);
+}
+
+RunSetup Context::set_up(const OptimParams& p, std::span<const char> seeds) {
+  lap("constraints");  // bc, built before the set-up
+  RunSetup s{p, build_stencil(mesh, p.method == OptimParams::Method::Global), {}, {}, seeds, {}};
+  lap("stencil");  // (Global: its gradients need loop_local)
+  s.dof.assign(mesh.num_points(), 0);
+  for (std::size_t i = 0; i < mesh.num_points(); ++i) {
+    const int d = mesh.point_class[i].dim;
     // Unclassified points (dim -1) and model vertices stay fixed.
-    dof[i] = d == 3 ? 3 : (bc && (d == 1 || d == 2) ? static_cast<std::uint8_t>(bc->dof(PointId(i))) : 0);
+    s.dof[i] = d == 3 ? 3 : (bc && (d == 1 || d == 2) ? static_cast<std::uint8_t>(bc->dof(PointId(i))) : 0);
   }
   // Points that lie in no cell do not enter the objective: keep them fixed.
-  for (std::size_t i = 0; i < m.num_points(); ++i)
-    if (stencil.cells_of(PointId(i)).empty()) dof[i] = 0;
-  if (records_energy()) {
-    V0 = cell_reference_volumes(stencil, p.metric, m.points);
-  } else {
-    V0 = cell_reference_volumes(stencil, p.metric, m.points, &cell_quality);
-    all_touched = false;  // the qualities are those of the points as they are
-  }
-  touched.assign(m.num_points(), 0);
+  for (std::size_t i = 0; i < mesh.num_points(); ++i)
+    if (s.stencil.cells_of(PointId(i)).empty()) s.dof[i] = 0;
+  const bool untangling = p.method == OptimParams::Method::Untangle;
+  s.V0 = untangling ? cell_reference_volumes(s.stencil, p.metric, mesh.points, &cell_quality)
+                    : cell_reference_volumes(s.stencil, p.metric, mesh.points);
   lap("reference_volumes");
+  const bool local = p.method == OptimParams::Method::Local || untangling;
+  if (p.foam_gate && local) {
+    s.loop_face = stencil_loop_faces(mesh, s.stencil);
+    lap("foam_gate");
+  }
+  return s;
+}
+
+Context::Context(PolyMesh& m, const ModelFacets* facets, const OptimParams& p, std::span<const char> seeds,
+                 std::span<const CellVerdict> known)
+    : mesh(m),
+      start(std::chrono::steady_clock::now()),
+      lap_start(start),
+      bc(make_constraints(facets, m, p)),
+      setup(set_up(p, seeds)) {
+  // Untangling: the qualities are those of the points as they are (set_up).
+  all_touched = records_energy();
+  touched.assign(m.num_points(), 0);
   cell_valid.assign(m.num_cells(), 0);
   if (known.size() == m.num_cells()) {
     for (std::size_t c = 0; c < known.size(); ++c) cell_valid[c] = known[c].valid;
@@ -56,7 +73,8 @@ Context::Context(PolyMesh& m, const ModelFacets* facets, const OptimParams& p,
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m.num_cells(), 256), [&](const auto& r) {
     std::vector<Point3> scratch;
     for (std::size_t c = r.begin(); c != r.end(); ++c)
-      cell_valid[c] = star_shaped_verdict(stencil, static_cast<std::uint32_t>(c), m.points, true, scratch).valid;
+      cell_valid[c] =
+          star_shaped_verdict(setup.stencil, static_cast<std::uint32_t>(c), m.points, true, scratch).valid;
   });
   lap("verdicts");
 }
@@ -76,10 +94,10 @@ double Context::seconds() const {
 }
 
 double Context::objective(std::span<const Point3> pts) const {
-  std::vector<double> e(stencil.num_cells());
+  std::vector<double> e(setup.stencil.num_cells());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, e.size(), 256), [&](const auto& r) {
     for (std::size_t c = r.begin(); c != r.end(); ++c)
-      e[c] = cell_energy(stencil, static_cast<std::uint32_t>(c), params.metric, pts, V0[c], params.c);
+      e[c] = cell_energy(setup.stencil, static_cast<std::uint32_t>(c), setup.params.metric, pts, setup.V0[c], setup.params.c);
   });
   double sum = 0;
   for (double x : e) sum += x;
@@ -87,14 +105,14 @@ double Context::objective(std::span<const Point3> pts) const {
 }
 
 bool Context::uses_centre_gradients() const {
-  return params.derivatives == OptimParams::Derivatives::Corrected && params.method != OptimParams::Method::Untangle;
+  return setup.params.derivatives == OptimParams::Derivatives::Corrected && setup.params.method != OptimParams::Method::Untangle;
 }
 
 namespace {
 // The cells to re-evaluate at a record (every cell when all points count as
 // touched, else the cells of the touched points, increasing); clears the marks.
 std::vector<std::uint32_t> changed_cells(Context& ctx) {
-  const std::size_t nc = ctx.stencil.num_cells();
+  const std::size_t nc = ctx.setup.stencil.num_cells();
   std::vector<std::uint32_t> cells;
   if (ctx.all_touched) {
     cells.resize(nc);
@@ -103,7 +121,7 @@ std::vector<std::uint32_t> changed_cells(Context& ctx) {
     std::vector<char> dirty(nc, 0);
     for (std::size_t p = 0; p < ctx.touched.size(); ++p)
       if (ctx.touched[p])
-        for (std::uint32_t c : ctx.stencil.cells_of(PointId(p))) dirty[c] = 1;
+        for (std::uint32_t c : ctx.setup.stencil.cells_of(PointId(p))) dirty[c] = 1;
     for (std::size_t c = 0; c < nc; ++c)
       if (dirty[c]) cells.push_back(static_cast<std::uint32_t>(c));
   }
@@ -119,14 +137,14 @@ void Context::refresh_cells(std::span<const std::uint32_t> cells) {
     for (std::size_t i = rg.begin(); i != rg.end(); ++i) {
       const std::uint32_t c = cells[i];
       if (!records_energy()) {
-        cell_quality[c] = polydual::cell_quality(stencil, c, params.metric, mesh.points);
+        cell_quality[c] = polydual::cell_quality(setup.stencil, c, setup.params.metric, mesh.points);
       } else if (grads) {
-        recorded_energy[c] = cell_energy_gradient(stencil, c, params.metric, mesh.points, V0[c], params.c, nullptr,
-                                                  &grad_R[c], grad_F.data() + stencil.cell_loop_off[c]);
-        cell_quality[c] = polydual::cell_quality(stencil, c, params.metric, mesh.points);
+        recorded_energy[c] = cell_energy_gradient(setup.stencil, c, setup.params.metric, mesh.points, setup.V0[c], setup.params.c, nullptr,
+                                                  &grad_R[c], grad_F.data() + setup.stencil.cell_loop_off[c]);
+        cell_quality[c] = polydual::cell_quality(setup.stencil, c, setup.params.metric, mesh.points);
       } else {
         recorded_energy[c] =
-            cell_energy_and_quality(stencil, c, params.metric, mesh.points, V0[c], params.c, &cell_quality[c]);
+            cell_energy_and_quality(setup.stencil, c, setup.params.metric, mesh.points, setup.V0[c], setup.params.c, &cell_quality[c]);
       }
     }
   });
@@ -142,12 +160,12 @@ void Context::record(int iteration) {
   // sweep's corrected model needs them current) from one pass over their
   // corners; the others keep theirs. The sums are serial in cell order, so
   // the objective is the same as a full pass's, bit for bit.
-  const std::size_t nc = stencil.num_cells();
+  const std::size_t nc = setup.stencil.num_cells();
   if (records_energy()) recorded_energy.resize(nc);
   cell_quality.resize(nc);
   if (uses_centre_gradients()) {
     grad_R.resize(nc);
-    grad_F.resize(stencil.cell_loop_off.back());
+    grad_F.resize(setup.stencil.cell_loop_off.back());
   }
   refresh_cells(changed_cells(*this));
   r.objective = records_energy() ? 0.0 : std::numeric_limits<double>::quiet_NaN();
@@ -157,7 +175,7 @@ void Context::record(int iteration) {
   // exact count without a second pass of the star test.
   r.invalid = 0;
   for (std::uint8_t v : cell_valid) r.invalid += v == 0;
-  last_stats = quality_stats(cell_quality, params.metric);
+  last_stats = quality_stats(cell_quality, setup.params.metric);
   for (std::size_t c = 0; c < nc; ++c) last_stats.degenerate += cell_valid[c] && !std::isfinite(cell_quality[c]);
   // The cap of the next sweep's moves: the worst valid cell now.
   quality_cap = 0;
@@ -173,14 +191,14 @@ void Context::record(int iteration) {
     char detail[128];
     std::snprintf(detail, sizeof detail, "invalid cells %zu, mean quality %.4f, min %.4f", r.invalid,
                   r.mean_quality, r.min_quality);
-    (*progress)(ProgressEvent{"optimize", iteration, params.max_iter, r.seconds, detail});
+    (*progress)(ProgressEvent{"optimize", iteration, setup.params.max_iter, r.seconds, detail});
   }
 }
 
 void Context::basis(PointId p, Vec3 B[3]) const {
-  if (dof[p.idx] == 3) {
+  if (setup.dof[p.idx] == 3) {
     B[0] = {1, 0, 0}; B[1] = {0, 1, 0}; B[2] = {0, 0, 1};
-  } else if (dof[p.idx] > 0) {
+  } else if (setup.dof[p.idx] > 0) {
     bc->tangent_basis(p, B);
   }
 }
@@ -196,11 +214,10 @@ OptimReport optimize(PolyMesh& mesh, const ModelFacets* facets, const OptimParam
   OptimReport rep;
   OptimParams resolved = params;
   if (resolved.method == OptimParams::Method::Auto) resolved.method = OptimParams::Method::Local;
-  optim_detail::Context ctx(mesh, facets, resolved, known);
+  optim_detail::Context ctx(mesh, facets, resolved, seed_cells, known);
   ctx.report = &rep;
   rep.phases = std::move(ctx.setup_phases);
   ctx.progress = &progress;
-  ctx.seed_cells = seed_cells;
   // Every run ends with a record() of the final state, so its statistics are
   // the report's "after" (no extra pass over the cells).
   if (resolved.method == OptimParams::Method::Local || resolved.method == OptimParams::Method::Untangle) ctx.init_gates();

@@ -93,8 +93,8 @@ class WorstDescent {
   std::uint64_t work() const { return work_; }
   std::uint64_t pass_cost() const {
     std::uint64_t corners = 0;
-    for (std::uint32_t c = 0; c < ctx_.stencil.num_cells(); ++c)
-      corners += ctx_.stencil.num_corners(c, ctx_.params.metric) * ctx_.stencil.points_of(c).size();
+    for (std::uint32_t c = 0; c < ctx_.setup.stencil.num_cells(); ++c)
+      corners += ctx_.setup.stencil.num_corners(c, ctx_.setup.params.metric) * ctx_.setup.stencil.points_of(c).size();
     return corners;
   }
 
@@ -102,12 +102,12 @@ class WorstDescent {
   // returns how many. The qualities of p's cells are kept current in
   // ctx.cell_quality and in `worst`.
   int visit(PointId p, std::uint32_t w, WorstCells& worst) {
-    const int k = ctx_.dof[p.idx];
+    const int k = ctx_.setup.dof[p.idx];
     if (k == 0) return 0;
     if (ctx_.bc) ctx_.bc->ensure(p);
-    const auto cells = ctx_.stencil.cells_of(p);
+    const auto cells = ctx_.setup.stencil.cells_of(p);
     double v0 = 0;
-    for (std::uint32_t c : cells) v0 += ctx_.V0[c];
+    for (std::uint32_t c : cells) v0 += ctx_.setup.V0[c];
     const double ell = std::cbrt(v0 / static_cast<double>(cells.size()));
     int accepted = 0;
     double alpha = kStartStep * ell;  // each step starts at twice the last accepted length
@@ -134,8 +134,8 @@ class WorstDescent {
     q_.clear();
     double m = -std::numeric_limits<double>::infinity();
     for (std::uint32_t c : cells) {
-      work_ += ctx_.stencil.num_corners(c, ctx_.params.metric);
-      q_.push_back(polydual::cell_quality(ctx_.stencil, c, ctx_.params.metric, ctx_.mesh.points));
+      work_ += ctx_.setup.stencil.num_corners(c, ctx_.setup.params.metric);
+      q_.push_back(polydual::cell_quality(ctx_.setup.stencil, c, ctx_.setup.params.metric, ctx_.mesh.points));
       m = std::max(m, q_.back());
     }
     slot = keep;
@@ -167,7 +167,7 @@ class WorstDescent {
     const double f0 = soft_max(q0_, m0, tau);
     // Forward differences of the soft maximum along each basis vector (a
     // direction, not a decision: k evaluations instead of 2k).
-    const double h = ctx_.params.fd_step * ell;
+    const double h = ctx_.setup.params.fd_step * ell;
     double g[3] = {0, 0, 0}, gn = 0;
     for (int i = 0; i < k; ++i) {
       const double m = measure(p, o + h * B[i], cells);
@@ -176,7 +176,7 @@ class WorstDescent {
     }
     gn = std::sqrt(gn);
     if (!(gn > 0) || !std::isfinite(gn)) return false;
-    for (int hv = 0; hv <= ctx_.params.max_halvings; ++hv, alpha *= 0.5) {
+    for (int hv = 0; hv <= ctx_.setup.params.max_halvings; ++hv, alpha *= 0.5) {
       Point3 x = o;
       for (int i = 0; i < k; ++i) x += (-alpha * g[i] / gn) * B[i];
       std::uint32_t prim = BoundaryConstraints::kNone;
@@ -198,8 +198,8 @@ class WorstDescent {
   // Exact: every cell of p that is valid stays valid (the star test).
   bool keeps_valid(std::span<const std::uint32_t> cells) {
     for (std::uint32_t c : cells) {
-      work_ += ctx_.stencil.num_corners(c, ctx_.params.metric);
-      if (ctx_.cell_valid[c] && !star_shaped_verdict(ctx_.stencil, c, ctx_.mesh.points, true, scratch_).valid)
+      work_ += ctx_.setup.stencil.num_corners(c, ctx_.setup.params.metric);
+      if (ctx_.cell_valid[c] && !star_shaped_verdict(ctx_.setup.stencil, c, ctx_.mesh.points, true, scratch_).valid)
         return false;
     }
     return true;
@@ -221,7 +221,7 @@ IterationRecord descend_worst(Context& ctx) {
   for (double q : ctx.cell_quality)
     if (std::isfinite(q)) { sum += q; max = std::max(max, q); ++n; }
   const double mean = n > 0 ? sum / static_cast<double>(n) : 0.0;
-  if (ctx.params.worst_rounds <= 0 || !(max > mean)) return counts;
+  if (ctx.setup.params.worst_rounds <= 0 || !(max > mean)) return counts;
   // A mesh whose worst cells are far above the bound takes every cell above
   // the bound as a candidate: a cell that cannot improve (its points pinned
   // at model vertices, say) is dropped, and the next worst gets the rounds.
@@ -229,10 +229,10 @@ IterationRecord descend_worst(Context& ctx) {
   WorstCells worst(ctx.cell_quality, threshold);
   WorstDescent descent(ctx);
   const double budget = kWorkBudget * static_cast<double>(descent.pass_cost());
-  for (int round = 0; round < ctx.params.worst_rounds && !worst.empty() && double(descent.work()) < budget; ++round) {
+  for (int round = 0; round < ctx.setup.params.worst_rounds && !worst.empty() && double(descent.work()) < budget; ++round) {
     const std::uint32_t w = worst.worst();
     std::uint64_t moved = 0;
-    for (PointId p : ctx.stencil.points_of(w)) {
+    for (PointId p : ctx.setup.stencil.points_of(w)) {
       ++counts.visited;
       moved += static_cast<std::uint64_t>(descent.visit(p, w, worst));
       if (worst.worst() != w) break;  // w is no longer the worst: the next round takes the new one
