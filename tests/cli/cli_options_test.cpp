@@ -6,6 +6,7 @@
 
 #include "run_command.h"
 #include "split/split.h"
+#include "scratch_dir.h"
 
 #include <array>
 #include <cstdio>
@@ -30,21 +31,7 @@ struct CmdResult {
   std::string err;  // stderr
 };
 
-// This process's scratch directory, removed when the process exits (each
-// test runs in a process of its own under ctest).
-struct ScratchRoot {
-  fs::path path = fs::temp_directory_path() / ("polydual_cli_options_" + std::to_string(::getpid()));
-  ScratchRoot() { fs::create_directories(path); }
-  ~ScratchRoot() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-};
-
-fs::path scratch_root() {
-  static const ScratchRoot root;
-  return root.path;
-}
+fs::path scratch_root() { return polydual::test::scratch_dir(); }
 
 std::string slurp(const fs::path& p) {
   std::ifstream f(p, std::ios::binary);

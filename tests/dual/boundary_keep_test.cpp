@@ -32,6 +32,7 @@
 #include "pipeline/params.h"
 #include "require_tool.h"
 #include "run_command.h"
+#include "scratch_dir.h"
 
 using namespace polydual;
 using polydual::testing::exact_dual_volumes;
@@ -132,11 +133,7 @@ TetSoup dyadic_two_material_box() {
 
 using test::have_command;
 
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("polydual_boundary_keep_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir / name;
-}
+fs::path scratch(const std::string& name) { return test::scratch_dir() / name; }
 
 // Meshes a .geo text with the gmsh command (OpenCASCADE), msh 4.1.
 fs::path gmsh_mesh(const std::string& name, const std::string& geo, const std::string& opts = "") {

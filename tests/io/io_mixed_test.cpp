@@ -19,17 +19,14 @@
 #include "io/vtu_reader.h"
 #include "mesh/cell_soup.h"
 #include "run_command.h"
+#include "scratch_dir.h"
 
 using namespace polydual;
 using ::testing::HasSubstr;
 
 namespace {
 
-std::filesystem::path scratch() {
-  const auto d = std::filesystem::temp_directory_path() / ("polydual_io_mixed_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(d);
-  return d;
-}
+std::filesystem::path scratch() { return test::scratch_dir(); }
 std::string write(const std::string& name, const std::string& text) {
   const auto p = scratch() / name;
   std::ofstream(p) << text;

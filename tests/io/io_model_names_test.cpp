@@ -22,6 +22,7 @@
 #include "io/vtu_poly_reader.h"
 #include "io/write_poly_mesh.h"
 #include "pipeline/convert.h"
+#include "scratch_dir.h"
 
 namespace polydual {
 namespace {
@@ -30,20 +31,9 @@ namespace fs = std::filesystem;
 using testing::HasSubstr;
 using testing::Not;
 
-bool have(const char* tool) { return std::system((std::string("command -v ") + tool + " > /dev/null 2>&1").c_str()) == 0; }
+bool have(const char* tool) { return test::have_command(tool); }
 
-fs::path scratch() {
-  const fs::path dir = fs::temp_directory_path() / ("polydual_names_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir;
-}
-
-// Removes the scratch directory after the last test.
-class RemoveScratch : public testing::Environment {
- public:
-  void TearDown() override { fs::remove_all(scratch()); }
-};
-testing::Environment* const kRemoveScratch = testing::AddGlobalTestEnvironment(new RemoveScratch);
+fs::path scratch() { return test::scratch_dir(); }
 
 std::string slurp(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);

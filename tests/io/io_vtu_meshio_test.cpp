@@ -15,6 +15,7 @@
 #include "io/file_bytes.h"
 #include "io/vtu_reader.h"
 #include "require_tool.h"
+#include "scratch_dir.h"
 
 namespace polydual {
 namespace {
@@ -25,11 +26,7 @@ bool have_meshio() {
   return test::have_python_module("meshio");
 }
 
-fs::path scratch_dir() {
-  const fs::path p = fs::temp_directory_path() / ("polydual_meshio_" + std::to_string(::getpid()));
-  fs::create_directories(p);
-  return p;
-}
+using test::scratch_dir;
 
 // Writes the 5-tet unit cube with one triangle, one line and one vertex cell
 // (Gmsh's lower-dimensional elements) with meshio: `cell_data` is Python

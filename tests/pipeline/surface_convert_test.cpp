@@ -16,6 +16,7 @@
 #include "pipeline/convert_surface.h"
 #include "require_tool.h"
 #include "run_command.h"
+#include "scratch_dir.h"
 
 using namespace polydual;
 using polydual::testing::run_polydual;
@@ -23,11 +24,7 @@ using ::testing::HasSubstr;
 
 namespace {
 
-std::filesystem::path scratch() {
-  const auto d = std::filesystem::temp_directory_path() / ("polydual_surface_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(d);
-  return d;
-}
+std::filesystem::path scratch() { return test::scratch_dir(); }
 std::string write(const std::string& name, const std::string& text) {
   const auto p = scratch() / name;
   std::ofstream(p) << text;

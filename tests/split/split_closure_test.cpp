@@ -19,6 +19,7 @@
 #include "pipeline/convert.h"
 #include "require_tool.h"
 #include "run_command.h"
+#include "scratch_dir.h"
 
 namespace polydual {
 namespace {
@@ -30,8 +31,7 @@ std::string wedge_cone_mesh() {
   static const std::string path = [] {
     if (!test::have_command("gmsh") || !test::have_command("tetgen"))
       return std::string();
-    const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "polydual_split_closure";
-    std::filesystem::create_directories(dir);
+    const std::filesystem::path dir = test::scratch_dir("wedge_cone");
     std::ofstream(dir / "w.geo") << "SetFactory(\"OpenCASCADE\");\n"
                                     "Point(1)={0,0,0}; Point(2)={1,0,0}; Point(3)={1,0.12,0};\n"
                                     "Line(1)={1,2}; Line(2)={2,3}; Line(3)={3,1}; Curve Loop(1)={1,2,3};\n"
