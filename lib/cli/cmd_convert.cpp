@@ -57,6 +57,11 @@ int convert_surface_mesh(const Settings& s, TetSoup soup) {
                 s.out.c_str(), r.primal.num_cells(), r.dual.num_polygons(), r.dual.num_points(), r.verdicts.invalid,
                 r.areas.planar, r.areas.max_rel_error, r.areas.surfaces.size(), r.areas.max_rel_error_all,
                 r.smooth.moved, r.smooth.min_quality_before, r.smooth.min_quality_after, r.report.seconds);
+  if (!s.json && !s.quiet && r.split.find("rounds"))
+    std::printf("  split: %s rounds, %s vertices cut whole, invalid polygons %s -> %s, polygons %s -> %s\n",
+                r.split.find("rounds")->dump().c_str(), r.split.find("whole_vertices")->dump().c_str(),
+                r.split.find("invalid_before")->dump().c_str(), r.split.find("invalid_after")->dump().c_str(),
+                r.split.find("polygons_before")->dump().c_str(), r.split.find("polygons_after")->dump().c_str());
   if (r.verdicts.invalid > 0) {
     const Defect d{"invalid_polygons", "polygons not star-shaped about their primal vertex", r.verdicts.invalid,
                    invalid_polygon_items(r, 10)};

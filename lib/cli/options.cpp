@@ -68,7 +68,7 @@ const std::vector<OptionDef> kTable = {
      "keep the dual without virtual cuts: slit cells at free edges and cells no placement makes valid stay",
      nullptr, [](Settings& s, const std::string&) { s.params.split.enabled = false; }},
     {"--split-rounds", K::Int, "N", 0, SplitParams::kMaxRounds,
-     "most optimised rounds cutting the vertices of cells still invalid whole (one convex cell per tet; on a mixed mesh one barycentric corner per cell), each untangling around the cut; then (tet meshes) a closure, bounded by the mesh, ends with every cell valid; 0: free-edge cuts only, no closure",
+     "most optimised rounds cutting the vertices of cells still invalid whole (one convex cell per tet; on a mixed mesh one barycentric corner per cell; on a surface mesh one corner polygon per cell), each untangling around the cut; then (tet meshes) a closure, bounded by the mesh, ends with every cell valid; 0: free-edge cuts only, no closure",
      [](const Settings& d) { return std::to_string(d.params.split.max_rounds); },
      [](Settings& s, const std::string& v) { s.params.split.max_rounds = std::stoi(v); }},
     {"--no-coarsen", K::Flag, "", kNoRange, kNoRange,

@@ -136,6 +136,9 @@ struct DualPoints {
   PolySurface& out;
   std::vector<std::uint32_t> cell_point, edge_point, vertex_point;
   std::vector<Vec3> normal;
+  const std::vector<char>* whole;  // null: no vertex cut whole
+
+  bool is_whole(VertexId v) const { return whole && (*whole)[v.idx] != 0; }
 
   std::uint32_t vertex(VertexId v) {
     if (vertex_point[v.idx] == UINT32_MAX)
@@ -167,9 +170,17 @@ SurfacePolygonDraft side_polygon(DualPoints& dp, VertexId v, const Side& s) {
   auto n_of = [&](PrimalCellId c) { return dp.normal[c.idx]; };
   const std::size_t k = s.cells.size();
   const auto pt = [&](PrimalCellId c) { return dp.cell_point[c.idx]; };
+  // From cell a to the next cell b across their edge through v: one fan
+  // triangle, or two through the edge's midpoint when its other end is cut
+  // whole (that vertex's corners pass through it: design §15, the split).
+  auto step = [&](PrimalCellId a, PrimalCellId b) {
+    const EdgeId e = m.find_edge(v, corner_at(m, a, v).prev);
+    if (!dp.is_whole(other_end(m, e, v))) return add_corner(d, pt(a), unit(n_of(a) + n_of(b)), true);
+    add_corner(d, pt(a), n_of(a), true);
+    add_corner(d, dp.edge_point[e.idx], n_of(b), true);
+  };
   if (s.closed) {
-    for (std::size_t i = 0; i < k; ++i)
-      add_corner(d, pt(s.cells[i]), unit(n_of(s.cells[i]) + n_of(s.cells[(i + 1) % k])), true);
+    for (std::size_t i = 0; i < k; ++i) step(s.cells[i], s.cells[(i + 1) % k]);
     while (d.points.size() > 1 && d.points.back() == d.points.front()) {
       d.points.pop_back(), d.fan_normal.pop_back(), d.tested.pop_back();
     }
@@ -179,8 +190,7 @@ SurfacePolygonDraft side_polygon(DualPoints& dp, VertexId v, const Side& s) {
   const bool with_v = !one_edge && (m.vertex_class(v).dim == 0 || boundary_turns(m, v, s.first, s.last));
   if (with_v) add_corner(d, dp.vertex(v), n_of(s.cells.front()), false);
   add_corner(d, dp.edge_point[s.first.idx], n_of(s.cells.front()), true);
-  for (std::size_t i = 0; i + 1 < k; ++i)
-    add_corner(d, pt(s.cells[i]), unit(n_of(s.cells[i]) + n_of(s.cells[i + 1])), true);
+  for (std::size_t i = 0; i + 1 < k; ++i) step(s.cells[i], s.cells[i + 1]);
   add_corner(d, pt(s.cells.back()), n_of(s.cells.back()), true);
   // The last midpoint closes to v, or along the chord through v (straight
   // boundary: v lies on it, no area, not tested), or is the first one.
@@ -188,7 +198,43 @@ SurfacePolygonDraft side_polygon(DualPoints& dp, VertexId v, const Side& s) {
   return d;
 }
 
-// The cells' central points. Cells joined by an edge on no curve whose
+// The polygon of cell c at a vertex v cut whole: its barycentric corner
+// (v, the midpoint of the edge to the next vertex, c's vertex mean, the
+// midpoint of the edge to the previous one), counterclockwise as c runs. It
+// is the convex region of c nearer v than any other vertex of c in
+// barycentric terms, so its two fan triangles about v turn counterclockwise
+// whenever c is not degenerate; the two along its edges through v are not
+// tested (they have no area).
+SurfacePolygonDraft corner_polygon(DualPoints& dp, VertexId v, PrimalCellId c) {
+  const PrimalMesh& m = dp.m;
+  const Corner k = corner_at(m, c, v);
+  SurfacePolygonDraft d;
+  d.reference = m.point(v);
+  d.primal_vertex = m.input_vertex(v);
+  d.surface = m.cell_class(c).tag;
+  const Vec3 n = dp.normal[c.idx];
+  add_corner(d, dp.vertex(v), n, false);
+  add_corner(d, dp.edge_point[m.find_edge(v, k.next).idx], n, true);
+  add_corner(d, dp.cell_point[c.idx], n, true);
+  add_corner(d, dp.edge_point[m.find_edge(v, k.prev).idx], n, false);
+  return d;
+}
+
+bool touches_whole(const DualPoints& dp, PrimalCellId c) {
+  for (VertexId v : dp.m.cell_vertices(c))
+    if (dp.is_whole(v)) return true;
+  return false;
+}
+
+Point3 vertex_mean(const PrimalMesh& m, PrimalCellId c) {
+  const auto vs = m.cell_vertices(c);
+  Point3 g{0, 0, 0};
+  for (VertexId v : vs) g += m.point(v);
+  return g / double(vs.size());
+}
+
+// The cells' central points (a cell with a vertex cut whole: its vertex
+// mean, as in 3D, design §14). Cells joined by an edge on no curve whose
 // central points are equal (cocircular triangles: the two halves of a
 // rectangle, a structured mesh) share one dual point, as the 3D cleanup
 // collapses zero-length dual edges (paper §2.8): a dual edge of length zero
@@ -198,7 +244,8 @@ void add_cell_points(const PrimalMesh& m, DualPoints& dp) {
   std::vector<Point3> centre(m.num_cells());
   dp.normal.resize(m.num_cells());
   for (std::size_t c = 0; c < m.num_cells(); ++c) {
-    centre[c] = cell_central_point(m, PrimalCellId(c)).p;
+    centre[c] = touches_whole(dp, PrimalCellId(c)) ? vertex_mean(m, PrimalCellId(c))
+                                                   : cell_central_point(m, PrimalCellId(c)).p;
     dp.normal[c] = surface_cell_normal(m, PrimalCellId(c));
   }
   UnionFind same(m.num_cells());
@@ -219,19 +266,24 @@ void add_cell_points(const PrimalMesh& m, DualPoints& dp) {
 
 }  // namespace
 
-PolySurface build_surface_dual(const PrimalMesh& m) {
+PolySurface build_surface_dual(const PrimalMesh& m, const std::vector<char>* whole) {
   if (m.dim() != 2) throw std::logic_error("build_surface_dual needs a surface mesh (PrimalMesh::dim() == 2)");
+  if (whole && whole->size() != m.num_vertices()) throw std::logic_error("build_surface_dual: one whole flag per vertex");
   PolySurface out;
   DualPoints dp{m, out, {}, std::vector<std::uint32_t>(m.num_edges(), UINT32_MAX),
-                std::vector<std::uint32_t>(m.num_vertices(), UINT32_MAX), {}};
+                std::vector<std::uint32_t>(m.num_vertices(), UINT32_MAX), {}, whole};
   add_cell_points(m, dp);
   for (std::size_t e = 0; e < m.num_edges(); ++e) {
-    if (!on_curve(m, EdgeId(e))) continue;
     const auto [a, b] = m.edge(EdgeId(e));
+    if (!on_curve(m, EdgeId(e)) && !dp.is_whole(a) && !dp.is_whole(b)) continue;
     dp.edge_point[e] = out.add_point(0.5 * (m.point(a) + m.point(b)), m.edge_class(EdgeId(e)),
                                      {SurfacePointOrigin::Kind::EdgeMidpoint, std::uint32_t(e)});
   }
-  for (std::size_t v = 0; v < m.num_vertices(); ++v)
+  for (std::size_t v = 0; v < m.num_vertices(); ++v) {
+    if (dp.is_whole(VertexId(v))) {
+      for (PrimalCellId c : m.vertex_cells(VertexId(v))) out.add_polygon(corner_polygon(dp, VertexId(v), c));
+      continue;
+    }
     for (const Side& s : vertex_sides(m, VertexId(v))) {
       const SurfacePolygonDraft d = side_polygon(dp, VertexId(v), s);
       if (d.points.size() < 3)
@@ -240,6 +292,7 @@ PolySurface build_surface_dual(const PrimalMesh& m) {
                              " make no polygon (" + std::to_string(s.cells.size()) + " cell(s) in a closed fan)");
       out.add_polygon(d);
     }
+  }
   return out;
 }
 

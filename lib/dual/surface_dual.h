@@ -24,16 +24,28 @@
 // used (vertex order); polygons in vertex order, a vertex's sides in order of
 // their smallest cell.
 #pragma once
+#include <vector>
+
 #include "mesh/poly_surface.h"
 #include "mesh/primal_mesh.h"
 
 namespace polydual {
 
+// Whole cuts (the split, design §15): a vertex v marked in `whole` (one flag
+// per vertex of m; null: none) has one polygon per cell around it, the
+// cell's barycentric corner (v, the midpoints of the cell's two edges
+// through v, the cell's vertex mean): convex, so valid by the exact fan test
+// whenever the cell is not degenerate. Every cell with a vertex cut whole
+// takes its vertex mean as central point and every edge through one has its
+// midpoint as a dual point, which the polygons of the edge's other vertex
+// pass through between the edge's two cells: any set of whole vertices
+// leaves the dual conformal, and the polygons still tile planar surfaces.
+//
 // m.dim() must be 2. Throws InputError naming the source and the cells when
 // two cells of one surface run their common edge the same way (the surface's
 // orientation is inconsistent there) or when a side is too small to make a
 // polygon.
-PolySurface build_surface_dual(const PrimalMesh& m);
+PolySurface build_surface_dual(const PrimalMesh& m, const std::vector<char>* whole = nullptr);
 
 // A primal cell's unit normal, floating point: the cross product of a
 // triangle's edges, or of a quadrangle's diagonals (its mean plane's normal).

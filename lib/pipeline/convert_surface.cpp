@@ -10,6 +10,7 @@
 #include "dual/surface_dual.h"
 #include "io/output_guard.h"
 #include "mesh/cell_soup.h"
+#include "split/surface_split.h"
 
 namespace polydual {
 namespace {
@@ -56,6 +57,8 @@ SurfaceConvertParams surface_params(const PipelineParams& params) {
   const auto method = params.optim.method;
   if (method == OptimParams::Method::None || method == OptimParams::Method::Untangle) sp.smooth.sweeps = 0;
   sp.require_valid = params.split.require_valid;
+  sp.split = params.split.enabled;
+  sp.split_rounds = params.split.max_rounds;
   return sp;
 }
 
@@ -95,6 +98,16 @@ SurfaceConvertResult convert_surface(const TetSoup& soup, const SurfaceConvertPa
     st.set("area", area_json(r.areas));
     return v;
   });
+  if (params.split && r.verdicts.invalid > 0) {
+    r.split = stage(r.report, hooks, "split", [&](Json& st) {
+      SplitParams sp;
+      sp.max_rounds = params.split_rounds;
+      const SurfaceSmoother smooth = [&](PolySurface& d) { smooth_surface(d, r.primal, params.smooth); };
+      st = run_surface_split(r.primal, sp, smooth, r.dual, r.verdicts);
+      r.areas = surface_area_identity(r.primal, r.dual);
+      return st;
+    });
+  }
   if (params.require_valid && r.verdicts.invalid > 0) {
     std::string what = std::to_string(r.verdicts.invalid) + " polygons are not star-shaped (--require-valid):";
     for (const std::string& item : invalid_polygon_items(r, 10)) what += " " + item + ";";
@@ -159,6 +172,7 @@ Json surface_summary(const SurfaceConvertResult& r) {
   j.set("smooth", std::move(sm));
   j.set("invalid", r.verdicts.invalid);
   j.set("fan_triangles", r.verdicts.fan_triangles);
+  if (r.split.find("rounds")) j.set("split", r.split);
   j.set("area", area_json(r.areas));
   Json stages = Json::array();
   for (const StageRecord& s : r.report.stages) {

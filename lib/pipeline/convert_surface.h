@@ -2,7 +2,8 @@
 //   read -> build_primal (classification; degenerate cells refused, exactly)
 //   -> surface dual (dual/surface_dual.h) -> smooth (optim/surface_smooth.h;
 //   sweeps 0: none) -> check (exact fan test and the area identity,
-//   quality/surface_verdict.h) -> write (a SurfaceWriter of
+//   quality/surface_verdict.h) -> split, when a polygon is invalid
+//   (split/surface_split.h) -> write (a SurfaceWriter of
 //   io/format_registry.h).
 // Nothing here prints or exits.
 #pragma once
@@ -28,13 +29,18 @@ struct SurfaceConvertResult {
   SurfaceVerdicts verdicts;
   SurfaceAreaIdentity areas;
   SurfaceSmoothReport smooth;
-  ConvertReport report;  // stages "primal", "dual", "smooth", "check", "write" (file entry)
+  ConvertReport report;  // stages "primal", "dual", "smooth", "check", ["split"], "write" (file entry)
+  Json split;            // the split stage's record (null: it did not run)
   Json written;          // the writer's record (file entry)
   std::vector<std::string> warnings;
 };
 
 struct SurfaceConvertParams {
   SurfaceSmoothParams smooth;
+  // The split (split/surface_split.h): rounds of whole cuts at the vertices
+  // of invalid polygons, at most split_rounds (--no-split: off).
+  bool split = true;
+  int split_rounds = SplitParams{}.max_rounds;
   // Refuse (InputError naming the polygons, nothing written) a dual with a
   // polygon the exact fan test finds invalid (--require-valid).
   bool require_valid = false;
@@ -42,7 +48,7 @@ struct SurfaceConvertParams {
 
 // The surface pipeline's parameters that follow a volume run's: smoothing
 // unless the optimiser is off or only untangles (the dual points then stay
-// where Algorithm 1 puts them), and --require-valid.
+// where Algorithm 1 puts them), the split and its rounds, and --require-valid.
 SurfaceConvertParams surface_params(const PipelineParams& params);
 
 // Whether a soup is a surface mesh: no volume cell, some triangle or quadrangle.

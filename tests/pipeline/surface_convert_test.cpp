@@ -140,21 +140,36 @@ TEST(SurfaceConvert, RequireValidRefusesAnInvalidDualNamingItsPolygons) {
   soup.source = "fan.msh";
   soup.points = {{0, 0, 0}, {0.1, 0, 0}, {-0.017365, 0.098481, 0}, {-0.196962, -0.034730, 0}};
   soup.triangles = {{{0, 1, 2}, 1}, {{0, 2, 3}, 1}, {{0, 3, 1}, 1}};
-  const SurfaceConvertResult plain = convert_surface(soup, {{0}, false});
+  SurfaceConvertParams off;
+  off.smooth.sweeps = 0;
+  off.split = false;
+  const SurfaceConvertResult plain = convert_surface(soup, off);
   // Vertex 1's polygon, and those of vertices 3 and 4, whose fans hold the
   // clamped centres lying next to their far edges.
   ASSERT_EQ(plain.verdicts.invalid, 3u);
   EXPECT_EQ(invalid_polygon_items(plain, 2),
             (std::vector<std::string>{"polygon 0 (vertex 1, surface 1)", "polygon 2 (vertex 3, surface 1)"}));
+  SurfaceConvertParams strict = off;
+  strict.require_valid = true;
   try {
-    convert_surface(soup, {{0}, true});
+    convert_surface(soup, strict);
     FAIL() << "no error";
   } catch (const InputError& e) {
     EXPECT_THAT(e.what(), HasSubstr("fan.msh: 3 polygons are not star-shaped (--require-valid): polygon 0 (vertex 1"));
   }
   // Smoothing lowers the count of invalid polygons (the centres move within
   // their triangles' plane; no move makes a valid polygon invalid).
-  EXPECT_LT(convert_surface(soup, {{8}, false}).verdicts.invalid, 3u);
+  SurfaceConvertParams smooth = off;
+  smooth.smooth.sweeps = 8;
+  EXPECT_LT(convert_surface(soup, smooth).verdicts.invalid, 3u);
+  // The split (on by default) cuts the three vertices whole: one polygon per
+  // triangle corner, all valid, the area kept; --require-valid then accepts.
+  strict.split = true;
+  const SurfaceConvertResult split = convert_surface(soup, strict);
+  EXPECT_EQ(split.verdicts.invalid, 0u);
+  EXPECT_EQ(split.dual.num_polygons(), 3u + 2u + 2u + 1u);  // corners of vertices 1, 3, 4; vertex 2 uncut
+  EXPECT_LE(split.areas.max_rel_error, 1e-15);
+  EXPECT_THAT(surface_summary(split).dump(), HasSubstr("\"whole_vertices\": 3"));
 }
 
 TEST(SurfaceConvert, DegenerateTriangleIsNamedAndNothingWritten) {
