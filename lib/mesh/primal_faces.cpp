@@ -36,6 +36,24 @@ int opposite_loops(std::span<const VertexId> x, std::span<const VertexId> y) {
   return rev ? 1 : same ? -1 : 0;
 }
 
+// items ordered by first(item), a vertex index below num_vertices, then by
+// `less` among the items of one vertex: a counting sort on the vertex, then
+// a sort of each vertex's few items. The same order as one std::sort by
+// (first, less) when that is a total order on the items, at a fraction of its
+// cost: a hexahedral mesh has some 1.2 million cell-local edges and faces.
+template <class T, class First, class Less>
+void sort_by_vertex(std::vector<T>& items, std::size_t num_vertices, First first, Less less) {
+  std::vector<std::uint64_t> off(num_vertices + 1, 0);
+  for (const T& x : items) ++off[first(x) + 1];
+  for (std::size_t v = 0; v < num_vertices; ++v) off[v + 1] += off[v];
+  std::vector<T> sorted(items.size());
+  std::vector<std::uint64_t> at(off.begin(), off.end() - 1);
+  for (const T& x : items) sorted[at[first(x)]++] = x;
+  for (std::size_t v = 0; v < num_vertices; ++v)
+    if (off[v + 1] - off[v] > 1) std::sort(sorted.begin() + off[v], sorted.begin() + off[v + 1], less);
+  items = std::move(sorted);
+}
+
 }  // namespace
 
 void PrimalMeshBuilder::match_faces(PrimalMesh& m, const CellSoup& soup) {
@@ -51,7 +69,14 @@ void PrimalMeshBuilder::match_faces(PrimalMesh& m, const CellSoup& soup) {
       all.push_back(f);
     }
   }
-  std::sort(all.begin(), all.end());
+  // Within a bucket key[0] is the same: the rest of LocalFace's order.
+  sort_by_vertex(all, m.num_vertices(), [](const LocalFace& f) { return f.key[0]; },
+                 [](const LocalFace& x, const LocalFace& y) {
+                   const std::uint64_t x12 = std::uint64_t(x.key[1]) << 32 | x.key[2],
+                                       y12 = std::uint64_t(y.key[1]) << 32 | y.key[2];
+                   if (x12 != y12) return x12 < y12;
+                   return (std::uint64_t(x.key[3]) << 32 | x.cell) < (std::uint64_t(y.key[3]) << 32 | y.cell);
+                 });
   m.cell_face_.resize(all.size());
   m.cell_face_side_.resize(all.size());
   m.face_off_.assign(1, 0);
@@ -150,9 +175,11 @@ void PrimalMeshBuilder::number_edges(PrimalMesh& m) {
       all.push_back({{a, b}, std::uint32_t(c), std::uint8_t(k)});
     }
   }
-  std::sort(all.begin(), all.end(), [](const LocalEdge& x, const LocalEdge& y) {
-    return x.key != y.key ? x.key < y.key : x.cell < y.cell;
-  });
+  // Within a bucket key[0] is the same: by (key[1], cell), as one sort by (key, cell).
+  sort_by_vertex(all, m.num_vertices(), [](const LocalEdge& e) { return e.key[0].idx; },
+                 [](const LocalEdge& x, const LocalEdge& y) {
+                   return (std::uint64_t(x.key[1].idx) << 32 | x.cell) < (std::uint64_t(y.key[1].idx) << 32 | y.cell);
+                 });
   m.cell_edge_.resize(all.size());
   m.ecell_.resize(all.size());
   m.ecell_off_.assign(1, 0);

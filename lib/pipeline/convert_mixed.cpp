@@ -3,6 +3,7 @@
 #include <cmath>
 #include <map>
 #include <set>
+#include <string>
 
 #include "classify/classify_primal.h"
 #include "classify/primal_features.h"
@@ -94,8 +95,8 @@ OptimParams mixed_optim_params(const PipelineParams& params) {
 }
 
 // The mixed split (split/mixed_split.h) after the first optimised dual: the
-// optimiser reaches it as a callback with the mixed method; the mesh it
-// returns is then validated (check_split), as the tet pipeline does.
+// optimiser reaches it as a callback with the mixed method; a mesh it changed
+// is then validated (check_split), as the tet pipeline does.
 void split_mixed(ConvertResult& r, const PipelineParams& params, const ConvertHooks& hooks) {
   const ModelFacets facets = model_facets(r.mixed->mesh);
   const OptimParams optim = mixed_optim_params(params);
@@ -105,10 +106,11 @@ void split_mixed(ConvertResult& r, const PipelineParams& params, const ConvertHo
   split_hooks.optimise = [&](PolyMesh& mesh, std::span<const char> seed, std::span<const CellVerdict> verdicts, bool) {
     return optimize(mesh, &facets, optim, hooks.progress, seed, verdicts).to_json();
   };
-  run_stage(r.report, hooks, "split", [&](Json& stats) {
+  const int rounds = run_stage(r.report, hooks, "split", [&](Json& stats) {
     stats = run_mixed_split(r.mixed->mesh, params.dual, params.split, r.mesh, r.check, split_hooks);
-    return 0;
+    return std::stoi(stats.find("rounds")->dump());
   });
+  if (rounds == 0) return;  // the mesh is check_after's, validated there
   r.check = run_stage(r.report, hooks, "check_split", [&](Json& stats) {
     CheckResult c = check_mixed(r, true);
     stats = c.to_json();
