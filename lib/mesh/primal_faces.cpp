@@ -192,6 +192,9 @@ void PrimalMeshBuilder::number_edges(PrimalMesh& m) {
     m.ecell_[i] = PrimalCellId(all[i].cell);
   }
   m.ecell_off_.push_back(all.size());
+  m.vedge_off_.assign(m.num_vertices() + 1, 0);
+  for (const auto& e : m.edge_vertex_) ++m.vedge_off_[e[0].idx + 1];
+  for (std::size_t v = 0; v < m.num_vertices(); ++v) m.vedge_off_[v + 1] += m.vedge_off_[v];
 }
 
 }  // namespace polydual

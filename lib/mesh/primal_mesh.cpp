@@ -74,9 +74,13 @@ std::vector<EdgeChain> PrimalMesh::edge_chains(EdgeId e) const {
 }
 
 EdgeId PrimalMesh::find_edge(VertexId a, VertexId b) const {
-  const std::array<VertexId, 2> key = a < b ? std::array{a, b} : std::array{b, a};
-  const auto it = std::lower_bound(edge_vertex_.begin(), edge_vertex_.end(), key);
-  return it != edge_vertex_.end() && *it == key ? EdgeId(std::size_t(it - edge_vertex_.begin())) : EdgeId::invalid();
+  if (b < a) std::swap(a, b);
+  if (a.idx + 1 >= vedge_off_.size()) return EdgeId::invalid();
+  const auto first = edge_vertex_.begin() + std::ptrdiff_t(vedge_off_[a.idx]);
+  const auto last = edge_vertex_.begin() + std::ptrdiff_t(vedge_off_[a.idx + 1]);
+  for (auto it = first; it != last; ++it)  // a vertex's few edges, increasing b
+    if ((*it)[1] == b) return EdgeId(std::size_t(it - edge_vertex_.begin()));
+  return EdgeId::invalid();
 }
 
 // ---------------------------------------------------------------- builder

@@ -126,6 +126,9 @@ class PrimalMesh {
   std::vector<VertexId> face_vtx_;
   std::vector<std::array<PrimalCellId, 2>> face_cell_;
   std::vector<std::array<VertexId, 2>> edge_vertex_;  // sorted: find_edge searches it
+  // Per vertex a, the edges (a, b) with b > a: edge_vertex_[vedge_off_[a] ..
+  // vedge_off_[a + 1]) (find_edge searches only those).
+  std::vector<std::uint64_t> vedge_off_;
   std::vector<std::uint64_t> ecell_off_, vstar_off_;
   std::vector<PrimalCellId> ecell_, vstar_;
   std::vector<ModelRef> vertex_class_, edge_class_, face_class_;
