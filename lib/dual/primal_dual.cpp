@@ -192,7 +192,7 @@ struct ChainWalker {
   // The face of c leading out (which 0) or back (1) about a -> b, and the cell across it.
   static std::pair<PrimalFaceId, PrimalCellId> lead(const PrimalMesh& m, PrimalCellId c, VertexId a, VertexId b,
                                                      int which) {
-    const int ia = m.local_index(c, a), ib = m.local_index(c, b);
+    const auto [ia, ib] = m.local_indices(c, a, b);
     const int i = which == 0 ? kLead[std::size_t(m.cell_type(c))][ia][ib] : kLead[std::size_t(m.cell_type(c))][ib][ia];
     return {m.cell_face(c, i), m.cell_neighbor(c, i)};
   }

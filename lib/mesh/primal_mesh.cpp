@@ -11,13 +11,6 @@
 
 namespace polydual {
 
-int PrimalMesh::local_index(PrimalCellId c, VertexId v) const {
-  const auto cv = cell_vertices(c);
-  for (std::size_t i = 0; i < cv.size(); ++i)
-    if (cv[i] == v) return int(i);
-  return -1;
-}
-
 std::array<int, 2> PrimalMesh::faces_at_edge(PrimalCellId c, int ia, int ib) const {
   const CellDescriptor& d = cell_descriptor(c);
   std::array<int, 2> out{-1, -1};
@@ -36,7 +29,8 @@ std::array<int, 2> PrimalMesh::faces_at_edge(PrimalCellId c, int ia, int ib) con
 // forward collecting cells and the faces between them.
 EdgeChain PrimalMesh::chain_from(PrimalCellId start, VertexId a, VertexId b) const {
   auto lead = [&](PrimalCellId c, int which) {
-    const int i = faces_at_edge(c, local_index(c, a), local_index(c, b))[which];
+    const auto [ia, ib] = local_indices(c, a, b);
+    const int i = faces_at_edge(c, ia, ib)[which];
     return std::pair{cell_face(c, i), cell_neighbor(c, i)};
   };
   PrimalCellId first = start;

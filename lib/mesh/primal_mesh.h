@@ -65,8 +65,24 @@ class PrimalMesh {
   PrimalFaceId cell_face(PrimalCellId c, int i) const { return cell_face_[cell_face_off_[c.idx] + i]; }
   int cell_face_side(PrimalCellId c, int i) const { return cell_face_side_[cell_face_off_[c.idx] + i]; }
   EdgeId cell_edge(PrimalCellId c, int k) const { return cell_edge_[cell_edge_off_[c.idx] + k]; }
-  // Local index of v in c, or -1.
-  int local_index(PrimalCellId c, VertexId v) const;
+  // Local index of v in c, or -1 (inline: the dual's edge walks ask it at
+  // every step).
+  int local_index(PrimalCellId c, VertexId v) const {
+    const auto cv = cell_vertices(c);
+    for (std::size_t i = 0; i < cv.size(); ++i)
+      if (cv[i] == v) return int(i);
+    return -1;
+  }
+  // The local indices of a and b in c (-1 where absent), in one scan.
+  std::array<int, 2> local_indices(PrimalCellId c, VertexId a, VertexId b) const {
+    const auto cv = cell_vertices(c);
+    std::array<int, 2> out{-1, -1};
+    for (std::size_t i = 0; i < cv.size(); ++i) {
+      if (cv[i] == a) out[0] = int(i);
+      if (cv[i] == b) out[1] = int(i);
+    }
+    return out;
+  }
   // The neighbour across local face i (invalid on the boundary).
   PrimalCellId cell_neighbor(PrimalCellId c, int i) const {
     return face_cell(cell_face(c, i), 1 - cell_face_side(c, i));
