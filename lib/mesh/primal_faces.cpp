@@ -79,6 +79,7 @@ void PrimalMeshBuilder::match_faces(PrimalMesh& m, const CellSoup& soup) {
                  });
   m.cell_face_.resize(all.size());
   m.cell_face_side_.resize(all.size());
+  m.cell_nbr_.resize(all.size());
   m.face_off_.assign(1, 0);
   auto local_loop = [&](const LocalFace& f) {
     const CellDescriptor& d = descriptor(m.cell_type_[f.cell]);
@@ -115,6 +116,7 @@ void PrimalMeshBuilder::match_faces(PrimalMesh& m, const CellSoup& soup) {
       const std::uint64_t at = m.cell_face_off_[all[k].cell] + all[k].local;
       m.cell_face_[at] = f;
       m.cell_face_side_[at] = std::uint8_t(k - i);
+      m.cell_nbr_[at] = j - i == 2 ? PrimalCellId(all[i + 1 - (k - i)].cell) : PrimalCellId();
     }
     i = j;
   }

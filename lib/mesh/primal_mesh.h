@@ -83,10 +83,9 @@ class PrimalMesh {
     }
     return out;
   }
-  // The neighbour across local face i (invalid on the boundary).
-  PrimalCellId cell_neighbor(PrimalCellId c, int i) const {
-    return face_cell(cell_face(c, i), 1 - cell_face_side(c, i));
-  }
+  // The neighbour across local face i (invalid on the boundary): stored per
+  // local face, one load where the dual's edge walks would make three.
+  PrimalCellId cell_neighbor(PrimalCellId c, int i) const { return cell_nbr_[cell_face_off_[c.idx] + i]; }
 
   // --- faces (volume meshes): triangles and quadrangles
   // Vertex loop, right-hand normal out of face_cell(f, 0).
@@ -137,6 +136,7 @@ class PrimalMesh {
   std::vector<VertexId> cell_vtx_;
   std::vector<PrimalFaceId> cell_face_;
   std::vector<std::uint8_t> cell_face_side_;
+  std::vector<PrimalCellId> cell_nbr_;  // per local face, the cell across it
   std::vector<EdgeId> cell_edge_;
   std::vector<std::uint64_t> face_off_;
   std::vector<VertexId> face_vtx_;
