@@ -6,12 +6,6 @@
 namespace polydual {
 namespace {
 
-Point3 vertex_mean(const PrimalMesh& m, std::span<const VertexId> v) {
-  Point3 s{0, 0, 0};
-  for (VertexId x : v) s = s + m.point(x);
-  return s * (1.0 / double(v.size()));
-}
-
 // EXACT: p lies strictly on the inner side of every triangle (a, b, c) of
 // consecutive vertices of every face loop of c (both fans of a quadrangle).
 bool strictly_inside(const PrimalMesh& m, PrimalCellId c, const Point3& p) {

@@ -36,20 +36,11 @@ bool edge_has_point(const PrimalMesh& m, bool keep, const MixedPoints& d, EdgeId
 bool vertex_has_point(const PrimalMesh& m, bool keep, const MixedPoints& d, VertexId v) {
   return m.vertex_class(v).dim == 0 || (keep && m.vertex_class(v).dim <= 2) || d.is_whole(v);
 }
-// Whether a face / cell has a vertex cut whole: its central point is then
-// its vertex mean (a corner of the cell between its vertex, the midpoints
-// and the faces' and cell's vertex means is convex for a tet, and for any
-// cell whose faces are planar and which is convex: the barycentric corner).
-bool touches_whole(const MixedPoints& d, std::span<const VertexId> vs) {
-  for (VertexId v : vs)
-    if (d.is_whole(v)) return true;
-  return false;
-}
-Point3 mean_of(const PrimalMesh& m, std::span<const VertexId> vs) {
-  Point3 p{0, 0, 0};
-  for (VertexId v : vs) p = p + m.point(v);
-  return p * (1.0 / double(vs.size()));
-}
+// A face or cell with a vertex cut whole (any_marked of its vertices in
+// d.whole) has its vertex mean as central point: a corner of the cell
+// between its vertex, the midpoints and the faces' and cell's vertex means is
+// convex for a tet, and for any cell whose faces are planar and which is
+// convex (the barycentric corner).
 
 // The model faces' central points, in owner_order (primal_caps.h): keep
 // mode takes triangle_inner_point for triangles, so the tiles are never
@@ -64,8 +55,8 @@ void add_face_points(const PrimalMesh& m, bool keep, MixedPoints& d, DualStats& 
   std::sort(model_faces.begin(), model_faces.end());
   for (const auto& [order, fid] : model_faces) {
     const auto fv = m.face_vertices(fid);
-    if (touches_whole(d, fv)) {  // a face through a vertex cut whole: its vertex mean
-      d.face_pt[fid.idx] = add(mean_of(m, fv), m.face_class(fid), 2, fid.idx);
+    if (any_marked(fv, d.whole)) {  // a face through a vertex cut whole: its vertex mean
+      d.face_pt[fid.idx] = add(vertex_mean(m, fv), m.face_class(fid), 2, fid.idx);
       continue;
     }
     const bool tri = fv.size() == 3;
@@ -83,7 +74,7 @@ void add_face_points(const PrimalMesh& m, bool keep, MixedPoints& d, DualStats& 
   for (std::size_t f = 0; f < m.num_faces(); ++f) {  // the other faces through a vertex cut whole
     const PrimalFaceId fid(f);
     const auto fv = m.face_vertices(fid);
-    if (!d.face_pt[f].valid() && touches_whole(d, fv)) d.face_pt[f] = add(mean_of(m, fv), m.face_class(fid), 2, f);
+    if (!d.face_pt[f].valid() && any_marked(fv, d.whole)) d.face_pt[f] = add(vertex_mean(m, fv), m.face_class(fid), 2, f);
   }
 }
 
@@ -113,10 +104,10 @@ MixedPoints make_points(const PrimalMesh& m, bool keep, const std::vector<char>*
       const PrimalCellId cid(c);
       const bool tet = m.cell_type(cid) == CellType::Tet;
       CentralPoint cp{{0, 0, 0}, false, 0};
-      if ((tet || m.cell_type(cid) == CellType::Prism) && !touches_whole(d, m.cell_vertices(cid)))
+      if ((tet || m.cell_type(cid) == CellType::Prism) && !any_marked(m.cell_vertices(cid), d.whole))
         cp = cell_central_point(m, cid);
       else
-        cp.p = mean_of(m, m.cell_vertices(cid));
+        cp.p = vertex_mean(m, m.cell_vertices(cid));
       pm.points[c] = cp.p;
       pm.point_class[c] = m.cell_class(cid);
       pm.point_origin[c] = PointOrigin{3, std::uint32_t(c)};

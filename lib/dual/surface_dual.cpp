@@ -220,19 +220,6 @@ SurfacePolygonDraft corner_polygon(DualPoints& dp, VertexId v, PrimalCellId c) {
   return d;
 }
 
-bool touches_whole(const DualPoints& dp, PrimalCellId c) {
-  for (VertexId v : dp.m.cell_vertices(c))
-    if (dp.is_whole(v)) return true;
-  return false;
-}
-
-Point3 vertex_mean(const PrimalMesh& m, PrimalCellId c) {
-  const auto vs = m.cell_vertices(c);
-  Point3 g{0, 0, 0};
-  for (VertexId v : vs) g += m.point(v);
-  return g / double(vs.size());
-}
-
 // The cells' central points (a cell with a vertex cut whole: its vertex
 // mean, as in 3D, design §14). Cells joined by an edge on no curve whose
 // central points are equal (cocircular triangles: the two halves of a
@@ -244,8 +231,8 @@ void add_cell_points(const PrimalMesh& m, DualPoints& dp) {
   std::vector<Point3> centre(m.num_cells());
   dp.normal.resize(m.num_cells());
   for (std::size_t c = 0; c < m.num_cells(); ++c) {
-    centre[c] = touches_whole(dp, PrimalCellId(c)) ? vertex_mean(m, PrimalCellId(c))
-                                                   : cell_central_point(m, PrimalCellId(c)).p;
+    const auto vs = m.cell_vertices(PrimalCellId(c));
+    centre[c] = dp.whole && any_marked(vs, *dp.whole) ? vertex_mean(m, vs) : cell_central_point(m, PrimalCellId(c)).p;
     dp.normal[c] = surface_cell_normal(m, PrimalCellId(c));
   }
   UnionFind same(m.num_cells());

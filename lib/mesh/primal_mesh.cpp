@@ -77,6 +77,27 @@ EdgeId PrimalMesh::find_edge(VertexId a, VertexId b) const {
   return EdgeId::invalid();
 }
 
+std::vector<VertexId> internal_of_input(const PrimalMesh& m) {
+  GlobalId n = 0;
+  for (std::size_t v = 0; v < m.num_vertices(); ++v) n = std::max(n, m.input_vertex(VertexId(v)) + 1);
+  std::vector<VertexId> out(n, VertexId::invalid());
+  for (std::size_t v = 0; v < m.num_vertices(); ++v) out[m.input_vertex(VertexId(v))] = VertexId(std::uint32_t(v));
+  return out;
+}
+
+bool any_marked(std::span<const VertexId> vs, const std::vector<char>& marked) {
+  if (marked.empty()) return false;
+  for (VertexId v : vs)
+    if (marked[v.idx]) return true;
+  return false;
+}
+
+Point3 vertex_mean(const PrimalMesh& m, std::span<const VertexId> vs) {
+  Point3 p{0, 0, 0};
+  for (VertexId v : vs) p = p + m.point(v);
+  return p * (1.0 / double(vs.size()));
+}
+
 // ---------------------------------------------------------------- builder
 
 PrimalMesh PrimalMeshBuilder::build(const CellSoup& soup) {

@@ -151,6 +151,17 @@ class PrimalMesh {
   std::vector<GlobalId> input_vertex_, input_cell_;
 };
 
+// The internal vertex of each input number (PrimalMesh::input_vertex; what a
+// dual's cell_primal names), invalid where none.
+std::vector<VertexId> internal_of_input(const PrimalMesh& m);
+
+// Whether a vertex of vs is marked (one flag per vertex; empty: none is).
+bool any_marked(std::span<const VertexId> vs, const std::vector<char>& marked);
+
+// The mean of the vertices' points (the central point of a face or cell
+// through a vertex cut whole, design §14).
+Point3 vertex_mean(const PrimalMesh& m, std::span<const VertexId> vs);
+
 struct CellSoup;
 
 // Builds the connectivity of a PrimalMesh from a soup whose cells are known to
@@ -165,14 +176,12 @@ class PrimalMeshBuilder {
   static PrimalMesh build(const CellSoup& soup);
 
  private:
-  // A local face of a cell, keyed by its sorted vertices (a triangle's padded with ~0).
+  // A local face of a cell, keyed by its sorted vertices (a triangle's padded
+  // with ~0); matched in (key, cell) order.
   struct LocalFace {
     std::array<std::uint32_t, 4> key;
     std::uint32_t cell;
     std::uint8_t local;
-    friend bool operator<(const LocalFace& x, const LocalFace& y) {
-      return x.key != y.key ? x.key < y.key : x.cell < y.cell;
-    }
   };
   static void copy_cells(PrimalMesh& m, const CellSoup& soup);
   static void build_vertex_stars(PrimalMesh& m);

@@ -21,6 +21,7 @@
 namespace polydual {
 namespace optim_detail {
 
+namespace {
 // The local schemes move only the points they visit and ensure() each
 // first (VertexNewton::optimise): their initial primitives are found then.
 std::unique_ptr<BoundaryConstraints> make_constraints(const ModelFacets* facets, const PolyMesh& m,
@@ -28,6 +29,7 @@ std::unique_ptr<BoundaryConstraints> make_constraints(const ModelFacets* facets,
   if (!facets) return nullptr;
   return std::make_unique<BoundaryConstraints>(*facets, m, p.method != OptimParams::Method::Global, p.keep_boundary);
 }
+}  // namespace
 
 RunSetup Context::set_up(const OptimParams& p, std::span<const char> seeds) {
   lap("constraints");  // bc, built before the set-up

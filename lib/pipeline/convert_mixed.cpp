@@ -107,8 +107,9 @@ void split_mixed(ConvertResult& r, const PipelineParams& params, const ConvertHo
     return optimize(mesh, &facets, optim, hooks.progress, seed, verdicts).to_json();
   };
   const int rounds = run_stage(r.report, hooks, "split", [&](Json& stats) {
-    stats = run_mixed_split(r.mixed->mesh, params.dual, params.split, r.mesh, r.check, split_hooks);
-    return std::stoi(stats.find("rounds")->dump());
+    MixedSplitRun run = run_mixed_split(r.mixed->mesh, params.dual, params.split, r.mesh, r.check, split_hooks);
+    stats = std::move(run.stats);
+    return run.rounds;
   });
   if (rounds == 0) return;  // the mesh is check_after's, validated there
   r.check = run_stage(r.report, hooks, "check_split", [&](Json& stats) {

@@ -12,9 +12,7 @@ namespace {
 // positive tets).
 double primal_cell_volume(const PrimalMesh& m, PrimalCellId c) {
   const auto cv = m.cell_vertices(c);
-  Point3 g{0, 0, 0};
-  for (VertexId v : cv) g = g + m.point(v);
-  g = g * (1.0 / double(cv.size()));
+  const Point3 g = vertex_mean(m, cv);
   double vol = 0;
   const CellDescriptor& d = m.cell_descriptor(c);
   for (int i = 0; i < d.num_faces; ++i) {

@@ -15,15 +15,10 @@ namespace {
 // Whether the dual point of origin o is made from an entity through a
 // vertex cut whole (its position is then the builder's, not a warm start).
 bool touches(const PrimalMesh& m, const std::vector<char>& whole, PointOrigin o) {
-  auto any = [&](auto vs) {
-    for (VertexId v : vs)
-      if (whole[v.idx]) return true;
-    return false;
-  };
   switch (o.dim) {
-    case 3: return any(m.cell_vertices(PrimalCellId(o.id)));
-    case 2: return any(m.face_vertices(PrimalFaceId(o.id)));
-    case 1: return whole[m.edge(EdgeId(o.id))[0].idx] || whole[m.edge(EdgeId(o.id))[1].idx];
+    case 3: return any_marked(m.cell_vertices(PrimalCellId(o.id)), whole);
+    case 2: return any_marked(m.face_vertices(PrimalFaceId(o.id)), whole);
+    case 1: return any_marked(m.edge(EdgeId(o.id)), whole);
     default: return whole[o.id] != 0;
   }
 }
@@ -38,13 +33,7 @@ struct MixedSplit {
   std::vector<VertexId> vertex_of_input;
 
   MixedSplit(const PrimalMesh& mesh, const DualParams& d, const SplitHooks& h)
-      : m(mesh), dual(d), hooks(h), whole(mesh.num_vertices(), 0) {
-    for (std::size_t v = 0; v < m.num_vertices(); ++v) {
-      const std::uint64_t in = m.input_vertex(VertexId(v));
-      if (in >= vertex_of_input.size()) vertex_of_input.resize(in + 1, VertexId::invalid());
-      vertex_of_input[in] = VertexId(std::uint32_t(v));
-    }
-  }
+      : m(mesh), dual(d), hooks(h), whole(mesh.num_vertices(), 0), vertex_of_input(internal_of_input(mesh)) {}
   bool cut_whole(const PolyMesh& mesh, std::size_t c) const {
     return whole[vertex_of_input[mesh.cell_primal[c].idx].idx] != 0;
   }
@@ -88,8 +77,8 @@ std::size_t warm_start_whole(const PrimalMesh& m, const std::vector<char>& whole
   return moved;
 }
 
-Json run_mixed_split(const PrimalMesh& m, const DualParams& dual, const SplitParams& params, PolyMesh& mesh,
-                     CheckResult& check, const SplitHooks& hooks) {
+MixedSplitRun run_mixed_split(const PrimalMesh& m, const DualParams& dual, const SplitParams& params,
+                              PolyMesh& mesh, CheckResult& check, const SplitHooks& hooks) {
   MixedSplit split(m, dual, hooks);
   const Stopwatch clock;
   const std::size_t invalid_before = check.invalid_cells, cells_before = mesh.num_cells();
@@ -114,7 +103,7 @@ Json run_mixed_split(const PrimalMesh& m, const DualParams& dual, const SplitPar
   stats.set("invalid_after", check.invalid_cells);
   stats.set("cells_before", cells_before);
   stats.set("cells_after", mesh.num_cells());
-  return stats;
+  return {rounds, std::move(stats)};
 }
 
 }  // namespace polydual

@@ -31,10 +31,15 @@ namespace polydual {
 // (required) re-optimises each rebuilt dual near the cells of the vertices cut
 // whole (untangle_only false: the last round's mesh is the one kept). On
 // return `mesh` is the last round's dual and `check` its verdicts (not its
-// validation). Returns the stage's record (rounds, whole_vertices,
-// invalid_before/after, cells_before/after). Throws Interrupted between rounds.
-Json run_mixed_split(const PrimalMesh& m, const DualParams& dual, const SplitParams& params, PolyMesh& mesh,
-                     CheckResult& check, const SplitHooks& hooks);
+// validation). Returns the rounds run (0: mesh and check unchanged) and the
+// stage's record (rounds, whole_vertices, invalid_before/after,
+// cells_before/after). Throws Interrupted between rounds.
+struct MixedSplitRun {
+  int rounds = 0;
+  Json stats;
+};
+MixedSplitRun run_mixed_split(const PrimalMesh& m, const DualParams& dual, const SplitParams& params,
+                              PolyMesh& mesh, CheckResult& check, const SplitHooks& hooks);
 
 // The rebuilt dual `after` takes the points of `before` (a dual of the same
 // primal) wherever a point has the same origin and touches no vertex cut

@@ -9,14 +9,8 @@ namespace polydual {
 
 namespace {
 
-bool touches(const PrimalMesh& m, const std::vector<char>& whole, PrimalCellId c) {
-  for (VertexId v : m.cell_vertices(c))
-    if (whole[v.idx]) return true;
-  return false;
-}
-
 // Marks the vertices of the invalid polygons whole; returns how many were new.
-std::size_t cut_invalid(const PrimalMesh& m, const PolySurface& dual, const SurfaceVerdicts& verdicts,
+std::size_t cut_invalid(const PolySurface& dual, const SurfaceVerdicts& verdicts,
                         const std::vector<VertexId>& vertex_of_input, std::vector<char>& whole) {
   std::size_t added = 0;
   for (std::size_t i = 0; i < dual.num_polygons(); ++i) {
@@ -38,7 +32,7 @@ std::size_t warm_start_surface(const PrimalMesh& m, const std::vector<char>& who
   std::size_t moved = 0;
   for (std::size_t p = 0; p < after.num_points(); ++p) {
     const SurfacePointOrigin o = after.point_origin(p);
-    if (o.kind != SurfacePointOrigin::Kind::CellCentre || touches(m, whole, PrimalCellId(o.id))) continue;
+    if (o.kind != SurfacePointOrigin::Kind::CellCentre || any_marked(m.cell_vertices(PrimalCellId(o.id)), whole)) continue;
     if (const auto it = centre.find(o.id); it != centre.end()) after.set_point(p, it->second), ++moved;
   }
   return moved;
@@ -46,19 +40,14 @@ std::size_t warm_start_surface(const PrimalMesh& m, const std::vector<char>& who
 
 Json run_surface_split(const PrimalMesh& m, const SplitParams& params, const SurfaceSmoother& smooth,
                        PolySurface& dual, SurfaceVerdicts& verdicts) {
-  std::vector<VertexId> vertex_of_input;
-  for (std::size_t v = 0; v < m.num_vertices(); ++v) {
-    const std::uint64_t in = m.input_vertex(VertexId(v));
-    if (in >= vertex_of_input.size()) vertex_of_input.resize(in + 1, VertexId::invalid());
-    vertex_of_input[in] = VertexId(std::uint32_t(v));
-  }
+  const std::vector<VertexId> vertex_of_input = internal_of_input(m);
   std::vector<char> whole(m.num_vertices(), 0);
   const std::size_t invalid_before = verdicts.invalid, polygons_before = dual.num_polygons();
   int rounds = 0;
   std::size_t cut = 0;
   while (verdicts.invalid > 0 && rounds < params.max_rounds) {
     throw_if_interrupted();
-    const std::size_t added = cut_invalid(m, dual, verdicts, vertex_of_input, whole);
+    const std::size_t added = cut_invalid(dual, verdicts, vertex_of_input, whole);
     if (added == 0) break;
     PolySurface fresh = build_surface_dual(m, &whole);
     warm_start_surface(m, whole, dual, fresh);
