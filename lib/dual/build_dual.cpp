@@ -30,6 +30,7 @@
 #include "dual/central_points.h"
 #include "dual/cleanup.h"
 #include "dual/cut_topology.h"
+#include "dual/edge_face_blocks.h"
 #include "dual/sides.h"
 #include "predicates/predicates.h"
 
@@ -316,78 +317,18 @@ template <bool kCuts>
   }
 }
 
-// The faces of a block of edges, built apart (face arrays only, numbered
-// from 0) and then appended to the dual.
-struct EdgeFaceBlock {
-  PolyMesh faces;
-  std::vector<std::uint32_t> model_faces;
-  std::size_t walked = 0;  // tets visited by the ring walks of the block's edges
-};
-
-// Room for the faces of n edges in a block (make_all_edge_faces).
-void reserve_block(PolyMesh& faces, std::size_t n) {
-  faces.face_offsets.reserve(n + 1);
-  faces.face_owner.reserve(n);
-  faces.face_neighbour.reserve(n);
-  faces.face_kind.reserve(n);
-  faces.face_tag.reserve(n);
-  faces.face_points.reserve(6 * n);
-}
-
-// Appends block b's faces to pm, renumbered after pm's own.
-void append_faces(PolyMesh& pm, std::vector<std::uint32_t>& model_faces, const EdgeFaceBlock& b) {
-  const std::uint32_t f0 = std::uint32_t(pm.num_faces()), p0 = std::uint32_t(pm.face_points.size());
-  pm.face_points.insert(pm.face_points.end(), b.faces.face_points.begin(), b.faces.face_points.end());
-  for (std::size_t f = 1; f < b.faces.face_offsets.size(); ++f) pm.face_offsets.push_back(p0 + b.faces.face_offsets[f]);
-  pm.face_owner.insert(pm.face_owner.end(), b.faces.face_owner.begin(), b.faces.face_owner.end());
-  pm.face_neighbour.insert(pm.face_neighbour.end(), b.faces.face_neighbour.begin(), b.faces.face_neighbour.end());
-  pm.face_kind.insert(pm.face_kind.end(), b.faces.face_kind.begin(), b.faces.face_kind.end());
-  pm.face_tag.insert(pm.face_tag.end(), b.faces.face_tag.begin(), b.faces.face_tag.end());
-  for (std::uint32_t f : b.model_faces) model_faces.push_back(f0 + f);
-}
-
-// Every edge's faces, in edge order: blocks of edges are built in parallel
-// and appended in order (the same faces for any thread count); two blocks per
-// thread in flight at a time, so the copies stay small. They are made while
-// the dual's arrays are at their largest, and land above them in the heap:
-// 8 blocks of 8192 edges, their arrays grown by doubling, raised the
-// process's memory peak ~2 MB above the live data (twomat 100k, the split's
-// final build). A block's arrays are reserved for one face of 6 points per
-// edge (every tet is in the rings of its 6 edges, and a mesh has more edges
-// than tets); a block that needs more grows. Returns the number of tets the
-// ring walks visited (6 per tet when every chain of every edge was walked).
+// Every edge's faces, in edge order (dual/edge_face_blocks.h). Returns the
+// number of tets the ring walks visited (6 per tet when every chain of every
+// edge was walked).
 template <bool kCuts>
 std::size_t make_all_edge_faces(const ClassifiedTetMesh& m, const CutTopology& ct, const VertexSides& sides,
                                 const DualPoints& d, PolyMesh& pm, std::vector<std::uint32_t>& model_faces,
                                 std::span<const char> active) {
-  constexpr std::size_t kBlock = 2048;
-  const std::size_t ne = m.num_edges();
-  const std::size_t tokens = 2 * std::size_t(std::max(1, tbb::this_task_arena::max_concurrency()));
-  std::size_t next = 0, walked = 0;
-  tbb::parallel_pipeline(
-      tokens,
-      tbb::make_filter<void, std::size_t>(tbb::filter_mode::serial_in_order,
-                                          [&](tbb::flow_control& fc) -> std::size_t {
-                                            if (next >= ne) fc.stop();
-                                            const std::size_t e0 = next;
-                                            next += kBlock;
-                                            return e0;
-                                          }) &
-          tbb::make_filter<std::size_t, std::shared_ptr<EdgeFaceBlock>>(
-              tbb::filter_mode::parallel,
-              [&](std::size_t e0) {
-                auto b = std::make_shared<EdgeFaceBlock>();
-                reserve_block(b->faces, std::min(ne, e0 + kBlock) - e0);
-                make_edge_faces<kCuts>(m, ct, sides, d, b->faces, b->model_faces, active, e0,
-                                       std::min(ne, e0 + kBlock), b->walked);
-                return b;
-              }) &
-          tbb::make_filter<std::shared_ptr<EdgeFaceBlock>, void>(
-              tbb::filter_mode::serial_in_order, [&](const std::shared_ptr<EdgeFaceBlock>& b) {
-                append_faces(pm, model_faces, *b);
-                walked += b->walked;
-              }));
-  return walked;
+  return make_faces_in_blocks(m.num_edges(), 2048, pm, model_faces,
+                              [&](std::size_t e0, std::size_t e1, EdgeFaceBlock& b) {
+                                make_edge_faces<kCuts>(m, ct, sides, d, b.faces, b.model_faces, active, e0, e1,
+                                                       b.walked);
+                              });
 }
 
 // Every tet lies around its 6 edges, so the ring walks of all edges visit

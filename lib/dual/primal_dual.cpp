@@ -14,6 +14,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/error.h"
+#include "dual/edge_face_blocks.h"
 #include "dual/primal_caps.h"
 #include "dual/primal_central_points.h"
 #include "dual/primal_sides.h"
@@ -170,12 +171,17 @@ struct ChainWalker {
   void for_each_chain(const PrimalMesh& m, EdgeId e, F&& f) {
     const auto [a, b] = m.edge(e);
     const auto around = m.edge_cells(e);
+    walk(m, around[0], a, b);
+    // The common case, one closed chain through every cell round e, needs
+    // no record of the cells placed.
+    if (closed && cells.size() == around.size()) return f();
     placed.assign(around.size(), 0);
-    for (std::size_t i = 0; i < around.size(); ++i) {
-      if (placed[i]) continue;
-      walk(m, around[i], a, b);
+    for (std::size_t i = 0;;) {
       for (PrimalCellId c : cells) placed[std::size_t(std::lower_bound(around.begin(), around.end(), c) - around.begin())] = 1;
       f();
+      while (i < around.size() && placed[i]) ++i;
+      if (i == around.size()) return;
+      walk(m, around[i], a, b);
     }
   }
 
@@ -204,14 +210,19 @@ struct ChainWalker {
   bool forward(const PrimalMesh& m, PrimalCellId first, VertexId a, VertexId b) {
     cells.clear();
     faces.clear();
-    faces.push_back(lead(m, first, a, b, 1).first);
+    const auto [ia, ib] = m.local_indices(first, a, b);
+    faces.push_back(m.cell_face(first, kLead[std::size_t(m.cell_type(first))][ib][ia]));
+    cells.push_back(first);
+    int out = kLead[std::size_t(m.cell_type(first))][ia][ib];
     PrimalCellId c = first;
-    do {
+    for (;;) {
+      faces.push_back(m.cell_face(c, out));
+      c = m.cell_neighbor(c, out);
+      if (!c.valid() || c == first) break;
       cells.push_back(c);
-      const auto [f, next] = lead(m, c, a, b, 0);
-      faces.push_back(f);
-      c = next;
-    } while (c.valid() && c != first);
+      const auto [ja, jb] = m.local_indices(c, a, b);
+      out = kLead[std::size_t(m.cell_type(c))][ja][jb];
+    }
     closed = c == first;
     return closed;
   }
@@ -232,7 +243,8 @@ void chain_faces(const PrimalMesh& m, const PrimalSides& sides, const MixedPoint
   // cells that have one (faces through a vertex cut whole).
   const bool whole = d.is_whole(a) || d.is_whole(b);
   cuts.clear();
-  for (std::size_t k = 0; k < n; ++k)
+  // An edge classified in a region has no model face round it.
+  for (std::size_t k = 0; k < n && (whole || m.edge_class(e).dim < 3); ++k)
     if (whole || m.face_class(ch.faces[k]).dim == 2) cuts.push_back(k);
   if (!ch.closed) cuts.push_back(n);  // faces[n] is the closing boundary face
   auto emit = [&](std::size_t s, std::size_t t, bool bounded) {
@@ -263,38 +275,16 @@ void chain_faces(const PrimalMesh& m, const PrimalSides& sides, const MixedPoint
   }
 }
 
-// The fan faces of every edge: blocks of edges built apart in parallel (face
-// arrays only, numbered from 0) and appended in edge order, so the faces are
-// the same for any thread count.
+// The fan faces of every edge, in edge order (dual/edge_face_blocks.h).
 void make_edge_faces(const PrimalMesh& m, const PrimalSides& sides, const MixedPoints& d, PolyMesh& pm,
                      std::vector<std::uint32_t>& scan) {
-  constexpr std::size_t kBlock = 4096;
-  const std::size_t ne = m.num_edges(), nb = (ne + kBlock - 1) / kBlock;
-  struct Block {
-    PolyMesh faces;
-    std::vector<std::uint32_t> scan;
-  };
-  std::vector<Block> blocks(nb);
-  tbb::parallel_for(std::size_t(0), nb, [&](std::size_t bi) {
+  make_faces_in_blocks(m.num_edges(), 2048, pm, scan, [&](std::size_t e0, std::size_t e1, EdgeFaceBlock& b) {
     ChainWalker walker;
     std::vector<std::size_t> cuts;
     std::vector<PointId> loop;
-    Block& b = blocks[bi];
-    for (std::size_t e = bi * kBlock; e < std::min(ne, (bi + 1) * kBlock); ++e)
-      walker.for_each_chain(m, EdgeId(e), [&] { chain_faces(m, sides, d, EdgeId(e), walker, b.faces, b.scan, cuts, loop); });
+    for (std::size_t e = e0; e < e1; ++e)
+      walker.for_each_chain(m, EdgeId(e), [&] { chain_faces(m, sides, d, EdgeId(e), walker, b.faces, b.model_faces, cuts, loop); });
   });
-  for (Block& b : blocks) {
-    const std::uint32_t f0 = std::uint32_t(pm.num_faces()), p0 = std::uint32_t(pm.face_points.size());
-    const PolyMesh& x = b.faces;
-    pm.face_points.insert(pm.face_points.end(), x.face_points.begin(), x.face_points.end());
-    for (std::size_t f = 1; f < x.face_offsets.size(); ++f) pm.face_offsets.push_back(p0 + x.face_offsets[f]);
-    pm.face_owner.insert(pm.face_owner.end(), x.face_owner.begin(), x.face_owner.end());
-    pm.face_neighbour.insert(pm.face_neighbour.end(), x.face_neighbour.begin(), x.face_neighbour.end());
-    pm.face_kind.insert(pm.face_kind.end(), x.face_kind.begin(), x.face_kind.end());
-    pm.face_tag.insert(pm.face_tag.end(), x.face_tag.begin(), x.face_tag.end());
-    for (std::uint32_t f : b.scan) scan.push_back(f0 + f);
-    b = Block{};
-  }
 }
 
 // The coincidence test adds the two centres' error bounds, widened by 0.1 %

@@ -6,7 +6,7 @@
 
 namespace polydual {
 
-CellId PrimalSides::cell(const PrimalMesh& m, PrimalCellId c, VertexId v) const {
+CellId PrimalSides::cell_in_star(const PrimalMesh& m, PrimalCellId c, VertexId v) const {
   const auto star = m.vertex_cells(v);
   const auto it = std::lower_bound(star.begin(), star.end(), c);
   return corner_cell[star_off[v.idx] + std::uint64_t(it - star.begin())];
@@ -29,6 +29,7 @@ PrimalSides compute_primal_sides(const PrimalMesh& m, const std::vector<char>* w
   out.star_off.resize(nv + 1, 0);
   for (std::size_t v = 0; v < nv; ++v) out.star_off[v + 1] = out.star_off[v] + m.vertex_cells(VertexId(v)).size();
   out.corner_cell.resize(out.star_off[nv]);
+  out.single.assign(nv, CellId::invalid());
   std::vector<std::uint32_t> root_cell;
   for (std::size_t vi = 0; vi < nv; ++vi) {
     const VertexId v(vi);
@@ -46,7 +47,7 @@ PrimalSides compute_primal_sides(const PrimalMesh& m, const std::vector<char>* w
     // A vertex classified in a region has no model face through it: one side.
     if (m.vertex_class(v).dim == 3) {
       for (std::uint32_t k = 0; k < n; ++k) out.corner_cell[out.star_off[vi] + k] = CellId(out.num_cells);
-      ++out.num_cells;
+      out.single[vi] = CellId(out.num_cells++);
       out.cell_vertex.push_back(v);
       out.cell_material.push_back(m.cell_class(star.front()).tag);
       continue;
@@ -66,6 +67,7 @@ PrimalSides compute_primal_sides(const PrimalMesh& m, const std::vector<char>* w
         }
       }
     root_cell.assign(n, CellId::kInvalid);
+    const std::size_t first = out.num_cells;
     for (std::uint32_t k = 0; k < n; ++k) {
       const std::uint32_t r = uf.find(k);
       if (root_cell[r] == CellId::kInvalid) {
@@ -75,6 +77,7 @@ PrimalSides compute_primal_sides(const PrimalMesh& m, const std::vector<char>* w
       }
       out.corner_cell[out.star_off[vi] + k] = CellId(root_cell[r]);
     }
+    if (out.num_cells == first + 1) out.single[vi] = CellId(std::uint32_t(first));
   }
   return out;
 }

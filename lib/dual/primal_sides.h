@@ -16,13 +16,22 @@ struct PrimalSides {
   // vertex_cells(v)[k].
   std::vector<std::uint64_t> star_off;
   std::vector<CellId> corner_cell;
+  // Per vertex, its one dual cell when it has one side (invalid otherwise):
+  // cell() answers it without searching the star (most vertices of a
+  // volume mesh are inside a region).
+  std::vector<CellId> single;
   std::size_t num_cells = 0;
   // cell -> (primal vertex, PrimalMesh numbering; material)
   std::vector<VertexId> cell_vertex;
   std::vector<std::int32_t> cell_material;
 
   // The dual cell of the side of v that holds cell c (c must have v).
-  CellId cell(const PrimalMesh& m, PrimalCellId c, VertexId v) const;
+  CellId cell(const PrimalMesh& m, PrimalCellId c, VertexId v) const {
+    return single[v.idx].valid() ? single[v.idx] : cell_in_star(m, c, v);
+  }
+
+ private:
+  CellId cell_in_star(const PrimalMesh& m, PrimalCellId c, VertexId v) const;
 };
 
 // Cells are numbered by primal vertex, then by the first cell (in star order,
