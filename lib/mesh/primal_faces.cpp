@@ -36,47 +36,39 @@ int opposite_loops(std::span<const VertexId> x, std::span<const VertexId> y) {
   return rev ? 1 : same ? -1 : 0;
 }
 
-// items ordered by first(item), a vertex index below num_vertices, then by
-// `less` among the items of one vertex: a counting sort on the vertex, then
-// a sort of each vertex's few items. The same order as one std::sort by
-// (first, less) when that is a total order on the items, at a fraction of its
-// cost: a hexahedral mesh has some 1.2 million cell-local edges and faces.
-template <class T, class First, class Less>
-void sort_by_vertex(std::vector<T>& items, std::size_t num_vertices, First first, Less less) {
-  std::vector<std::uint64_t> off(num_vertices + 1, 0);
-  for (const T& x : items) ++off[first(x) + 1];
-  for (std::size_t v = 0; v < num_vertices; ++v) off[v + 1] += off[v];
-  std::vector<T> sorted(items.size());
-  std::vector<std::uint64_t> at(off.begin(), off.end() - 1);
-  for (const T& x : items) sorted[at[first(x)]++] = x;
-  for (std::size_t v = 0; v < num_vertices; ++v)
-    if (off[v + 1] - off[v] > 1) std::sort(sorted.begin() + off[v], sorted.begin() + off[v + 1], less);
-  items = std::move(sorted);
-}
-
 }  // namespace
 
 void PrimalMeshBuilder::match_faces(PrimalMesh& m, const CellSoup& soup) {
-  std::vector<LocalFace> all;
-  all.reserve(m.cell_face_off_.back());
+  // The cell-local faces in (sorted key, cell) order: their keys in cell
+  // order, then for each vertex a the faces of a's star whose smallest
+  // vertex is a, sorted by the rest of the key and the cell (a walk of the
+  // stars, as number_edges).
+  std::vector<std::array<std::uint32_t, 4>> keys(m.cell_face_off_.back());
   for (std::size_t c = 0; c < m.num_cells(); ++c) {
     const CellDescriptor& d = descriptor(m.cell_type_[c]);
     const auto cv = m.cell_vertices(PrimalCellId(c));
     for (int i = 0; i < d.num_faces; ++i) {
-      LocalFace f{{kPad, kPad, kPad, kPad}, std::uint32_t(c), std::uint8_t(i)};
-      for (int k = 0; k < d.face_size[i]; ++k) f.key[k] = cv[d.faces[i][k]].idx;
-      std::sort(f.key.begin(), f.key.end());
-      all.push_back(f);
+      auto& key = keys[m.cell_face_off_[c] + std::uint64_t(i)];
+      key = {kPad, kPad, kPad, kPad};
+      for (int k = 0; k < d.face_size[i]; ++k) key[k] = cv[d.faces[i][k]].idx;
+      std::sort(key.begin(), key.end());
     }
   }
-  // Within a bucket key[0] is the same: the rest of LocalFace's order.
-  sort_by_vertex(all, m.num_vertices(), [](const LocalFace& f) { return f.key[0]; },
-                 [](const LocalFace& x, const LocalFace& y) {
-                   const std::uint64_t x12 = std::uint64_t(x.key[1]) << 32 | x.key[2],
-                                       y12 = std::uint64_t(y.key[1]) << 32 | y.key[2];
-                   if (x12 != y12) return x12 < y12;
-                   return (std::uint64_t(x.key[3]) << 32 | x.cell) < (std::uint64_t(y.key[3]) << 32 | y.cell);
-                 });
+  std::vector<LocalFace> all;
+  all.reserve(keys.size());
+  for (std::size_t a = 0; a < m.num_vertices(); ++a) {
+    const std::size_t first = all.size();
+    for (PrimalCellId c : m.vertex_cells(VertexId(a))) {
+      const std::uint64_t off = m.cell_face_off_[c.idx];
+      for (std::uint64_t i = 0; i < m.cell_face_off_[c.idx + 1] - off; ++i)
+        if (keys[off + i][0] == a) all.push_back({keys[off + i], c.idx, std::uint8_t(i)});
+    }
+    std::sort(all.begin() + std::ptrdiff_t(first), all.end(), [](const LocalFace& x, const LocalFace& y) {
+      const std::uint64_t x12 = std::uint64_t(x.key[1]) << 32 | x.key[2], y12 = std::uint64_t(y.key[1]) << 32 | y.key[2];
+      if (x12 != y12) return x12 < y12;
+      return (std::uint64_t(x.key[3]) << 32 | x.cell) < (std::uint64_t(y.key[3]) << 32 | y.cell);
+    });
+  }
   m.cell_face_.resize(all.size());
   m.cell_face_side_.resize(all.size());
   m.cell_nbr_.resize(all.size());
@@ -160,43 +152,46 @@ void PrimalMeshBuilder::check_hanging_quads(const PrimalMesh& m, const CellSoup&
   }
 }
 
+// Edges numbered by (lower vertex a, higher vertex b), their cells in
+// increasing order: for each a, the cell-local edges (a, b > a) of a's star
+// are gathered and sorted by (b, cell). The star walk reads cells near each
+// other; one sort of all cell-local edges (a hexahedral mesh has 12 per
+// cell) scattered them across memory at twice the cost.
 void PrimalMeshBuilder::number_edges(PrimalMesh& m) {
   struct LocalEdge {
-    std::array<VertexId, 2> key;
-    std::uint32_t cell;
+    std::uint64_t key;  // b << 32 | cell
     std::uint8_t local;
   };
-  std::vector<LocalEdge> all;
-  all.reserve(m.cell_edge_off_.back());
-  for (std::size_t c = 0; c < m.num_cells(); ++c) {
-    const CellDescriptor& d = descriptor(m.cell_type_[c]);
-    const auto cv = m.cell_vertices(PrimalCellId(c));
-    for (int k = 0; k < d.num_edges; ++k) {
-      VertexId a = cv[d.edges[k][0]], b = cv[d.edges[k][1]];
-      if (b < a) std::swap(a, b);
-      all.push_back({{a, b}, std::uint32_t(c), std::uint8_t(k)});
-    }
-  }
-  // Within a bucket key[0] is the same: by (key[1], cell), as one sort by (key, cell).
-  sort_by_vertex(all, m.num_vertices(), [](const LocalEdge& e) { return e.key[0].idx; },
-                 [](const LocalEdge& x, const LocalEdge& y) {
-                   return (std::uint64_t(x.key[1].idx) << 32 | x.cell) < (std::uint64_t(y.key[1].idx) << 32 | y.cell);
-                 });
-  m.cell_edge_.resize(all.size());
-  m.ecell_.resize(all.size());
+  std::vector<LocalEdge> recs;
+  const std::size_t nv = m.num_vertices();
+  m.cell_edge_.resize(m.cell_edge_off_.back());
+  m.ecell_.resize(m.cell_edge_off_.back());
   m.ecell_off_.assign(1, 0);
-  for (std::size_t i = 0; i < all.size(); ++i) {
-    if (i == 0 || all[i].key != all[i - 1].key) {
-      if (i) m.ecell_off_.push_back(i);
-      m.edge_vertex_.push_back(all[i].key);
+  m.vedge_off_.assign(nv + 1, 0);
+  std::size_t at = 0;
+  for (std::size_t a = 0; a < nv; ++a) {
+    recs.clear();
+    for (PrimalCellId c : m.vertex_cells(VertexId(a))) {
+      const CellDescriptor& d = m.cell_descriptor(c);
+      const auto cv = m.cell_vertices(c);
+      for (int k = 0; k < d.num_edges; ++k) {
+        const std::uint32_t x = cv[d.edges[k][0]].idx, y = cv[d.edges[k][1]].idx;
+        if (std::min(x, y) == a) recs.push_back({std::uint64_t(std::max(x, y)) << 32 | c.idx, std::uint8_t(k)});
+      }
     }
-    m.cell_edge_[m.cell_edge_off_[all[i].cell] + all[i].local] = EdgeId(m.edge_vertex_.size() - 1);
-    m.ecell_[i] = PrimalCellId(all[i].cell);
+    std::sort(recs.begin(), recs.end(), [](const LocalEdge& x, const LocalEdge& y) { return x.key < y.key; });
+    for (std::size_t i = 0; i < recs.size(); ++i) {
+      const std::uint32_t b = std::uint32_t(recs[i].key >> 32), c = std::uint32_t(recs[i].key);
+      if (i == 0 || b != std::uint32_t(recs[i - 1].key >> 32)) {
+        if (!m.edge_vertex_.empty()) m.ecell_off_.push_back(at);
+        m.edge_vertex_.push_back({VertexId(std::uint32_t(a)), VertexId(b)});
+      }
+      m.cell_edge_[m.cell_edge_off_[c] + recs[i].local] = EdgeId(m.edge_vertex_.size() - 1);
+      m.ecell_[at++] = PrimalCellId(c);
+    }
+    m.vedge_off_[a + 1] = m.edge_vertex_.size();
   }
-  m.ecell_off_.push_back(all.size());
-  m.vedge_off_.assign(m.num_vertices() + 1, 0);
-  for (const auto& e : m.edge_vertex_) ++m.vedge_off_[e[0].idx + 1];
-  for (std::size_t v = 0; v < m.num_vertices(); ++v) m.vedge_off_[v + 1] += m.vedge_off_[v];
+  m.ecell_off_.push_back(at);
 }
 
 }  // namespace polydual
