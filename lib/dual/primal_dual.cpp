@@ -154,77 +154,101 @@ constexpr LeadTable make_lead_table() {
   }
   return t;
 }
-constexpr LeadTable kLead = make_lead_table();
+// The same by the edge's code in the cell (PrimalMesh::edge_cell_locals):
+// [type][code] = {the face leading out, the face leading back}.
+using EdgeLeadTable = std::array<std::array<std::array<std::int8_t, 2>, 24>, 4>;
+constexpr EdgeLeadTable make_edge_lead_table() {
+  constexpr LeadTable lead = make_lead_table();
+  EdgeLeadTable t{};
+  for (int ty = 0; ty < 4; ++ty) {
+    const CellDescriptor& d = descriptor(CellType(ty));
+    for (int k = 0; k < d.num_edges; ++k) {
+      const int p = d.edges[k][0], q = d.edges[k][1];
+      t[ty][2 * k] = {lead[ty][p][q], lead[ty][q][p]};
+      t[ty][2 * k + 1] = {lead[ty][q][p], lead[ty][p][q]};
+    }
+  }
+  return t;
+}
+constexpr EdgeLeadTable kEdgeLead = make_edge_lead_table();
 
 // The chains of cells around edges (PrimalMesh::edge_chains' chains; a
-// closed one may start elsewhere round the edge), walked into reused buffers: the dual's faces
-// stage walks every edge, and the allocations and face searches of
-// edge_chains() made it 6x slower per element than the tet builder's.
+// closed one may start elsewhere round the edge), walked into reused
+// buffers by the cells' positions in edge_cells(e): each step reads the
+// faces at e from the edge's code in the cell (a table), not from the
+// cell's vertices. The dual's faces stage walks every edge; the allocations
+// and face searches of edge_chains() made it 6x slower per element than the
+// tet builder's.
 struct ChainWalker {
   std::vector<PrimalCellId> cells;
   std::vector<PrimalFaceId> faces;
+  std::vector<std::uint32_t> at;  // the positions of cells in edge_cells(e)
   std::vector<char> placed;
   bool closed = false;
 
   // Calls f() for each chain of e, with cells, faces and closed filled.
   template <class F>
   void for_each_chain(const PrimalMesh& m, EdgeId e, F&& f) {
-    const auto [a, b] = m.edge(e);
-    const auto around = m.edge_cells(e);
-    walk(m, around[0], a, b);
+    const Around r{m.edge_cells(e), m.edge_cell_locals(e)};
+    walk(m, r, 0);
     // The common case, one closed chain through every cell round e, needs
     // no record of the cells placed.
-    if (closed && cells.size() == around.size()) return f();
-    placed.assign(around.size(), 0);
+    if (closed && cells.size() == r.cells.size()) return f();
+    placed.assign(r.cells.size(), 0);
     for (std::size_t i = 0;;) {
-      for (PrimalCellId c : cells) placed[std::size_t(std::lower_bound(around.begin(), around.end(), c) - around.begin())] = 1;
+      for (std::uint32_t p : at) placed[p] = 1;
       f();
-      while (i < around.size() && placed[i]) ++i;
-      if (i == around.size()) return;
-      walk(m, around[i], a, b);
+      while (i < r.cells.size() && placed[i]) ++i;
+      if (i == r.cells.size()) return;
+      walk(m, r, std::uint32_t(i));
     }
   }
 
  private:
-  // The face of c leading out (which 0) or back (1) about a -> b, and the cell across it.
-  static std::pair<PrimalFaceId, PrimalCellId> lead(const PrimalMesh& m, PrimalCellId c, VertexId a, VertexId b,
-                                                     int which) {
-    const auto [ia, ib] = m.local_indices(c, a, b);
-    const int i = which == 0 ? kLead[std::size_t(m.cell_type(c))][ia][ib] : kLead[std::size_t(m.cell_type(c))][ib][ia];
-    return {m.cell_face(c, i), m.cell_neighbor(c, i)};
-  }
-  // Forward from `start`; if the walk comes back to it the chain is closed
-  // and starts there (one lap, where PrimalMesh::chain_from walks two and
-  // starts a cell later: the same cyclic chain). Otherwise back to the open
-  // chain's first cell, then forward from it.
-  void walk(const PrimalMesh& m, PrimalCellId start, VertexId a, VertexId b) {
-    if (forward(m, start, a, b)) return;
-    PrimalCellId first = start;
-    for (;;) {
-      const PrimalCellId prev = lead(m, first, a, b, 1).second;
-      if (!prev.valid()) break;
-      first = prev;
+  struct Around {
+    std::span<const PrimalCellId> cells;  // increasing
+    std::span<const std::uint8_t> codes;
+    // The local face of cells[i] leading out (which 0) or back (1) about e.
+    int lead(const PrimalMesh& m, std::uint32_t i, int which) const {
+      return kEdgeLead[std::size_t(m.cell_type(cells[i]))][codes[i]][which];
     }
-    forward(m, first, a, b);
+    std::uint32_t position(PrimalCellId c) const {
+      return std::uint32_t(std::lower_bound(cells.begin(), cells.end(), c) - cells.begin());
+    }
+  };
+  // Forward from position `start`; if the walk comes back to it the chain is
+  // closed and starts there (one lap, where PrimalMesh::chain_from walks two
+  // and starts a cell later: the same cyclic chain). Otherwise back to the
+  // open chain's first cell, then forward from it.
+  void walk(const PrimalMesh& m, const Around& r, std::uint32_t start) {
+    if (forward(m, r, start)) return;
+    std::uint32_t first = start;
+    for (;;) {
+      const PrimalCellId prev = m.cell_neighbor(r.cells[first], r.lead(m, first, 1));
+      if (!prev.valid()) break;
+      first = r.position(prev);
+    }
+    forward(m, r, first);
   }
-  bool forward(const PrimalMesh& m, PrimalCellId first, VertexId a, VertexId b) {
+  bool forward(const PrimalMesh& m, const Around& r, std::uint32_t first) {
     cells.clear();
     faces.clear();
-    const auto [ia, ib] = m.local_indices(first, a, b);
-    faces.push_back(m.cell_face(first, kLead[std::size_t(m.cell_type(first))][ib][ia]));
-    cells.push_back(first);
-    int out = kLead[std::size_t(m.cell_type(first))][ia][ib];
-    PrimalCellId c = first;
-    for (;;) {
-      faces.push_back(m.cell_face(c, out));
-      c = m.cell_neighbor(c, out);
-      if (!c.valid() || c == first) break;
+    at.clear();
+    const PrimalCellId c0 = r.cells[first];
+    faces.push_back(m.cell_face(c0, r.lead(m, first, 1)));
+    for (std::uint32_t i = first;;) {
+      const PrimalCellId c = r.cells[i];
       cells.push_back(c);
-      const auto [ja, jb] = m.local_indices(c, a, b);
-      out = kLead[std::size_t(m.cell_type(c))][ja][jb];
+      at.push_back(i);
+      const int out = r.lead(m, i, 0);
+      faces.push_back(m.cell_face(c, out));
+      const PrimalCellId next = m.cell_neighbor(c, out);
+      if (!next.valid() || next == c0) {
+        closed = next == c0;
+        return closed;
+      }
+      i = r.position(next);
     }
-    closed = c == first;
-    return closed;
   }
 };
 

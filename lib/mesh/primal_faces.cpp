@@ -160,12 +160,13 @@ void PrimalMeshBuilder::check_hanging_quads(const PrimalMesh& m, const CellSoup&
 void PrimalMeshBuilder::number_edges(PrimalMesh& m) {
   struct LocalEdge {
     std::uint64_t key;  // b << 32 | cell
-    std::uint8_t local;
+    std::uint8_t local;  // 2 * local edge + (whether it runs from b to a)
   };
   std::vector<LocalEdge> recs;
   const std::size_t nv = m.num_vertices();
   m.cell_edge_.resize(m.cell_edge_off_.back());
   m.ecell_.resize(m.cell_edge_off_.back());
+  m.ecell_local_.resize(m.cell_edge_off_.back());
   m.ecell_off_.assign(1, 0);
   m.vedge_off_.assign(nv + 1, 0);
   std::size_t at = 0;
@@ -176,7 +177,7 @@ void PrimalMeshBuilder::number_edges(PrimalMesh& m) {
       const auto cv = m.cell_vertices(c);
       for (int k = 0; k < d.num_edges; ++k) {
         const std::uint32_t x = cv[d.edges[k][0]].idx, y = cv[d.edges[k][1]].idx;
-        if (std::min(x, y) == a) recs.push_back({std::uint64_t(std::max(x, y)) << 32 | c.idx, std::uint8_t(k)});
+        if (std::min(x, y) == a) recs.push_back({std::uint64_t(std::max(x, y)) << 32 | c.idx, std::uint8_t(2 * k + (x != a))});
       }
     }
     std::sort(recs.begin(), recs.end(), [](const LocalEdge& x, const LocalEdge& y) { return x.key < y.key; });
@@ -186,7 +187,8 @@ void PrimalMeshBuilder::number_edges(PrimalMesh& m) {
         if (!m.edge_vertex_.empty()) m.ecell_off_.push_back(at);
         m.edge_vertex_.push_back({VertexId(std::uint32_t(a)), VertexId(b)});
       }
-      m.cell_edge_[m.cell_edge_off_[c] + recs[i].local] = EdgeId(m.edge_vertex_.size() - 1);
+      m.cell_edge_[m.cell_edge_off_[c] + recs[i].local / 2] = EdgeId(m.edge_vertex_.size() - 1);
+      m.ecell_local_[at] = recs[i].local;
       m.ecell_[at++] = PrimalCellId(c);
     }
     m.vedge_off_[a + 1] = m.edge_vertex_.size();

@@ -97,6 +97,11 @@ class PrimalMesh {
   std::array<VertexId, 2> edge(EdgeId e) const { return edge_vertex_[e.idx]; }  // (a, b), a < b
   // All cells with edge e, increasing (in a surface network, every sheet's).
   std::span<const PrimalCellId> edge_cells(EdgeId e) const { return row(ecell_off_, ecell_, e.idx); }
+  // Per cell of edge_cells(e), e's local edge k in it and its direction:
+  // 2 * k, or 2 * k + 1 when the cell's local edge k runs from edge(e)[1] to
+  // edge(e)[0] (the dual's edge walks read the cell's faces at e from it,
+  // without scanning the cell's vertices).
+  std::span<const std::uint8_t> edge_cell_locals(EdgeId e) const { return row(ecell_off_, ecell_local_, e.idx); }
   // The chains of cells and faces around e (volume meshes): one closed chain
   // inside the mesh, one open chain per pass of the outside. Every cell of
   // edge_cells(e) is in exactly one; the first chain holds edge_cells(e)[0],
@@ -147,6 +152,7 @@ class PrimalMesh {
   std::vector<std::uint64_t> vedge_off_;
   std::vector<std::uint64_t> ecell_off_, vstar_off_;
   std::vector<PrimalCellId> ecell_, vstar_;
+  std::vector<std::uint8_t> ecell_local_;
   std::vector<ModelRef> vertex_class_, edge_class_, face_class_;
   std::vector<GlobalId> input_vertex_, input_cell_;
 };
