@@ -18,6 +18,11 @@
 //    doubles, ns per tet and the share that reached the exact path;
 //  - Stencil: the optimisers' and quality metrics' flat topology
 //    (build_stencil), ms per build;
+//  - PrimalDual: the dual's stages (draft, cleanup, cells) and the primal's
+//    build on one thread, us per element (fastest iteration), on a
+//    structured block of hexahedra (Gmsh's transfinite blocks) against the
+//    cube domain's tets of about as many elements: the mixed path's cost
+//    per element against the tet path's;
 //  - Untangle: optimize(Untangle) on the raw dual with its verdicts known, as
 //    `convert --optimize untangle` runs it, against its budget
 //    (classify + the free-edge cuts + dual + one star test of the same mesh,
@@ -38,6 +43,11 @@
 #include <vector>
 
 #include "classify/classify.h"
+#include "classify/classify_primal.h"
+#include "dual/cleanup.h"
+#include "dual/primal_dual.h"
+#include "generate/random_mixed.h"
+#include "mesh/cell_soup.h"
 #include "dual/build_dual.h"
 #include "generate/domains.h"
 #include "generate/random_mesh.h"
@@ -195,6 +205,57 @@ void BM_ClassifyDualRandom(benchmark::State& st, std::size_t n) {
   classify_dual_counters(st, cache.at(n));
 }
 
+// n^3 hexahedra filling the unit box, its faces tagged 1..6.
+TetSoup hex_grid(int n) {
+  TetSoup s;
+  s.source = "<hex grid>";
+  auto id = [n](int i, int j, int k) { return std::uint32_t((k * (n + 1) + j) * (n + 1) + i); };
+  for (int k = 0; k <= n; ++k)
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) s.points.push_back({double(i) / n, double(j) / n, double(k) / n});
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        add_cell(s, CellType::Hex,
+                 {id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k), id(i, j, k + 1),
+                  id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)},
+                 1);
+  tag_box_boundary(s, 0.0, 1.0);
+  return s;
+}
+
+// The primal's build and the dual's stages of a soup on one thread, through
+// the mixed path (build_primal, build_primal_dual_draft) or the tet path
+// (classify, build_dual_draft); the cleanup and the cells are shared.
+void BM_PrimalDual(benchmark::State& st, bool mixed) {
+  tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
+  static const TetSoup hexes = hex_grid(46);  // 97,336 hexahedra
+  const TetSoup& soup = mixed ? hexes : soup_for(Domain::Cube, 100000);
+  const double n = double(soup.tets.size() + soup.other_cells.size());
+  double best_primal = 1e300, best_dual = 1e300;
+  std::size_t cells = 0;
+  using Clock = std::chrono::steady_clock;
+  auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
+  for (auto _ : st) {
+    auto t0 = Clock::now();
+    PrimalMesh pm;
+    ClassifiedTetMesh tm;
+    if (mixed) pm = build_primal(cell_soup(soup));
+    else tm = classify(soup);
+    best_primal = std::min(best_primal, since(t0));
+    t0 = Clock::now();
+    DualDraft d = mixed ? build_primal_dual_draft(pm, DualParams{}) : build_dual_draft(tm, DualParams{});
+    cleanup_dual(d);
+    const PolyMesh dual = assemble_cells(std::move(d));
+    best_dual = std::min(best_dual, since(t0));
+    cells = dual.num_cells();
+  }
+  st.counters["elements"] = n;
+  st.counters["cells"] = double(cells);
+  st.counters["primal_us_per_element_best"] = best_primal * 1e6 / n;
+  st.counters["dual_us_per_element_best"] = best_dual * 1e6 / n;
+}
+
 // The star test's tets over every cell of the dual: exact or plain doubles.
 template <bool Exact>
 void BM_Star(benchmark::State& st, Domain d, std::size_t n) {
@@ -305,6 +366,8 @@ const bool registered = [] {
       benchmark::RegisterBenchmark(("Untangle/" + tag).c_str(), BM_Untangle, d, n)
           ->Unit(benchmark::kMillisecond)->MinTime(3.0);
     }
+  benchmark::RegisterBenchmark("PrimalDual/hex46", BM_PrimalDual, true)->Unit(benchmark::kMillisecond)->MinTime(3.0);
+  benchmark::RegisterBenchmark("PrimalDual/cube_tets", BM_PrimalDual, false)->Unit(benchmark::kMillisecond)->MinTime(3.0);
   for (std::size_t n : random_sizes())
     benchmark::RegisterBenchmark(("ClassifyDualRandom/" + std::to_string(n)).c_str(), BM_ClassifyDualRandom, n)
         ->Unit(benchmark::kMillisecond)->MinTime(5.0);
