@@ -822,9 +822,11 @@ bool LocalRun::untangling_ends_run(const IterationRecord& rec) {
 // a repair descent in one more record; neither while cells are invalid (the
 // split cuts and re-optimises them: on a sliver mesh's tangled dual the
 // repair cost 4x the sweeps). sweep: the first sweep not run.
+// Untangling only, the repair runs when asked (foam_repair_untangle) and
+// the polish never.
 void LocalRun::finish(int sweep) {
-  if (untangle_only_) return;
-  if (prm_.polish_sweeps > 0 && prm_.max_iter > 0 && ctx_.report->iterations.back().invalid == 0)
+  if (untangle_only_ && !prm_.foam_repair_untangle) return;
+  if (!untangle_only_ && prm_.polish_sweeps > 0 && prm_.max_iter > 0 && ctx_.report->iterations.back().invalid == 0)
     polish_worst(ctx_, whole_passes(), solvers_, mode_, sweep, last_change_);
   if (prm_.foam_gate && prm_.max_iter > 0 && ctx_.report->iterations.back().invalid == 0) {
     ctx_.lap("iterations");
@@ -837,7 +839,7 @@ void LocalRun::finish(int sweep) {
 // Untangling sweeps while cells are invalid, then smoothing sweeps until the
 // objective drops by less than the tolerance (relative) or max_iter.
 void LocalRun::run() {
-  if (untangle_only_ && untangle_left_ == 0) return;
+  if (untangle_only_ && untangle_left_ == 0) return finish(1);
   if (seeded_) bound_seeded_run();
   full_sweep_ = untangle_left_ == 0 && !seeded_;
   int s = 1;
@@ -846,7 +848,7 @@ void LocalRun::run() {
     set_sweep_mode(untangling, s);
     const IterationRecord& rec = run_sweep(s, untangling);
     if (untangling) {
-      if (untangling_ends_run(rec)) return;
+      if (untangling_ends_run(rec)) return finish(s + 1);
       continue;
     }
     full_sweep_ = false;

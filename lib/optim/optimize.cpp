@@ -350,6 +350,7 @@ Json OptimParams::to_json() const {
   j.set("keep_boundary", keep_boundary);
   j.set("foam_gate", foam_gate);
   j.set("foam_gate_sweeps", foam_gate_sweeps);
+  j.set("foam_repair_untangle", foam_repair_untangle);
   j.set("global_iterations_per_round", global_iterations_per_round);
   return j;
 }

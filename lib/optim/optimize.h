@@ -122,6 +122,10 @@ struct OptimParams {
   // passes ever fails. Default false: on TetGen sliver meshes it held the
   // worst cell at 61 against 14 and the mean at 7.0 against 4.0.
   bool foam_gate_sweeps = false;
+  // Untangle, with foam_gate: the repair descent after the untangling too
+  // (the mixed pipeline's method, which smooths nothing so that layers of
+  // prisms and hexahedra stay anisotropic). Default false.
+  bool foam_repair_untangle = false;
   static constexpr double kMaxPlanarity = 1000.0;
   // Global: L-BFGS iterations per round. Default 50.
   int global_iterations_per_round = 50;

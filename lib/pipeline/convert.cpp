@@ -16,6 +16,7 @@
 #include "io/format_registry.h"
 #include "io/read_tet_mesh.h"
 #include "classify/self_overlap.h"
+#include "optim/foam_gate.h"
 #include "pipeline/convert_mixed.h"
 #include "pipeline/run_stage.h"
 #include "split/split.h"
@@ -131,6 +132,16 @@ void run_split_stage(ConvertResult& r, SplitState& st, const ModelFacets& facets
       return optimize(mesh, &facets, params.optim, hooks.progress, local ? seed : std::span<const char>(), verdicts)
           .to_json();
     };
+  if (params.optim.method != OptimParams::Method::None && params.optim.foam_gate) {
+    split_hooks.foam_failing = [](const PolyMesh& mesh) { return foam_check(mesh).cells; };
+    split_hooks.optimise_foam_gated = [&](PolyMesh& mesh, std::span<const char> seed,
+                                          std::span<const CellVerdict> verdicts, bool) {
+      OptimParams gated = params.optim;
+      gated.foam_gate_sweeps = true;
+      if (gated.method == OptimParams::Method::Global) gated.method = OptimParams::Method::Local;
+      return optimize(mesh, &facets, gated, {}, seed, verdicts).to_json();
+    };
+  }
   run_stage(r.report, hooks, "split", [&](Json& stats) {
     stats = run_split(r.primal, params.dual, params.split, st, r.mesh, r.check, split_hooks);
     return 0;
@@ -179,7 +190,29 @@ void require_valid(const ConvertResult& r) {
 
 // What follows the last check on either path: the lost-volume warning, the
 // final count, --require-valid.
-void finish_pipeline(ConvertResult& r, const PipelineParams& params) {
+// OpenFOAM's own verdict on the mesh returned (optim/foam_gate.h's
+// foam_check, what checkMesh -allGeometry computes in floating point: face
+// pyramids and face tets), a stage of the report and, when faces fail, a
+// warning naming their cells.
+void openfoam_check(ConvertResult& r, const ConvertHooks& hooks) {
+  const FoamCheck fc = run_stage(r.report, hooks, "openfoam_check", [&](Json& stats) {
+    FoamCheck c = foam_check(r.mesh);
+    stats = c.to_json();
+    return c;
+  });
+  if (fc.cells.empty()) return;
+  std::string cells;
+  for (std::size_t i = 0; i < fc.cells.size() && i < kListedDefects; ++i)
+    cells += (i ? ", " : "") + std::to_string(fc.cells[i]);
+  if (fc.cells.size() > kListedDefects) cells += ", ...";
+  r.warnings.push_back("OpenFOAM's checkMesh will find " + std::to_string(fc.pyramid_faces) +
+                       " faces with wrongly oriented pyramids and " + std::to_string(fc.face_tet_faces) +
+                       " with face-tet errors (its floating-point centres; the exact test passes them), in cells " +
+                       cells);
+}
+
+void finish_pipeline(ConvertResult& r, const PipelineParams& params, const ConvertHooks& hooks) {
+  openfoam_check(r, hooks);
   if (params.dual.boundary == BoundaryMode::Caps) warn_lost_volume(r);
   r.report.invalid_after = r.check.invalid_cells;
   if (params.split.require_valid) require_valid(r);
@@ -196,7 +229,7 @@ void run_pipeline(ConvertResult& r, const TetSoup& soup, const PipelineParams& p
   if (is_mixed_or_surface(soup)) {  // design §14: the primal of any cell type
     pipeline_detail::run_mixed_stages(r, soup, params, hooks);
     if (release) *release = TetSoup{};
-    finish_pipeline(r, params);
+    finish_pipeline(r, params, hooks);
     return;
   }
   r.primal = run_stage(rep, hooks, "classify", [&](Json& stats) {
@@ -245,7 +278,7 @@ void run_pipeline(ConvertResult& r, const TetSoup& soup, const PipelineParams& p
     });
   }
   if (params.split.enabled) run_split_stage(r, st, facets, params, hooks);
-  finish_pipeline(r, params);
+  finish_pipeline(r, params, hooks);
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include "dual/primal_dual.h"
 #include "mesh/cell_soup.h"
 #include "mesh/model_facets.h"
+#include "optim/foam_gate.h"
 #include "pipeline/run_stage.h"
 #include "quality/primal_reference.h"
 #include "split/mixed_split.h"
@@ -91,6 +92,7 @@ CheckResult check_mixed(const ConvertResult& r, bool with_validation) {
 OptimParams mixed_optim_params(const PipelineParams& params) {
   OptimParams optim = params.optim;
   if (optim.method == OptimParams::Method::Auto) optim.method = OptimParams::Method::Untangle;
+  optim.foam_repair_untangle = true;
   return optim;
 }
 
@@ -106,6 +108,7 @@ void split_mixed(ConvertResult& r, const PipelineParams& params, const ConvertHo
   split_hooks.optimise = [&](PolyMesh& mesh, std::span<const char> seed, std::span<const CellVerdict> verdicts, bool) {
     return optimize(mesh, &facets, optim, hooks.progress, seed, verdicts).to_json();
   };
+  if (optim.foam_gate) split_hooks.foam_failing = [](const PolyMesh& mesh) { return foam_check(mesh).cells; };
   const int rounds = run_stage(r.report, hooks, "split", [&](Json& stats) {
     MixedSplitRun run = run_mixed_split(r.mixed->mesh, params.dual, params.split, r.mesh, r.check, split_hooks);
     stats = std::move(run.stats);

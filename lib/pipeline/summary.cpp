@@ -162,6 +162,15 @@ Json worst_cells_summary(const ConvertResult& r, Metric metric) {
     return a.first != b.first ? a.first > b.first : a.second < b.second;
   });
   Json j = Json::object();
+  // The mesh returned: its worst and mean cell (the optimiser's records are
+  // of the meshes it left, before any later stage moved points).
+  double sum = 0, worst = 0;
+  for (double x : q) {
+    sum += x;
+    worst = std::max(worst, x);
+  }
+  j.set("max", std::isfinite(worst) ? Json(worst) : Json());
+  j.set("mean", std::isfinite(sum) ? Json(sum / double(q.size())) : Json());
   j.set("bound", OptimReport::kWorstBound);
   j.set("cells_above", above.size());
   if (above.size() > OptimReport::kMaxWorstCells) above.resize(OptimReport::kMaxWorstCells);
@@ -313,6 +322,8 @@ Json convert_summary(const ConvertResult& r, const PipelineParams& params) {
   const StageRecord* split = r.report.stage("split");
   j.set("split", split ? split->stats : Json());
   if (const StageRecord* tet = r.report.stage("optimize_tets")) j.set("optimize_tets", tet->stats);
+  // OpenFOAM's verdict (face pyramids, face tets) on the mesh written.
+  if (const StageRecord* of = r.report.stage("openfoam_check")) j.set("openfoam", of->stats);
   j.set("worst_cells", worst_cells_summary(r, params.optim.metric));
   j.set("params", params.to_json());
   j.set("seconds", seconds_summary(r.report));

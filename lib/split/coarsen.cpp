@@ -303,6 +303,48 @@ std::vector<double> whole_cell_quality(const SplitState& st, const VertexCuts& c
 
 }  // namespace
 
+std::uint32_t cell_side(const PolyMesh& mesh, std::uint32_t c) {
+  std::uint32_t first = c;
+  while (first > 0 && mesh.cell_primal[first - 1] == mesh.cell_primal[c]) --first;
+  return c - first;
+}
+
+VertexCuts split_back(const ClassifiedTetMesh& m, const VertexCuts& cuts, std::span<const BadCell> cells) {
+  std::vector<std::pair<VertexId, TriId>> pairs;
+  for (std::size_t v = 0; v + 1 < cuts.off.size(); ++v)
+    for (TriId f : cuts.of(VertexId(v))) pairs.emplace_back(VertexId(v), f);
+  std::vector<BadCell> todo(cells.begin(), cells.end());
+  std::sort(todo.begin(), todo.end(), [](const BadCell& a, const BadCell& b) {
+    return a.v.idx != b.v.idx ? a.v.idx < b.v.idx : a.side < b.side;
+  });
+  for (std::size_t i = 0; i < todo.size();) {
+    const VertexId v = todo[i].v;
+    // The sides of v: its star tets joined through interior triangles that
+    // no cut of v separates, numbered by their first tet in star order.
+    const std::uint32_t n = std::uint32_t(m.vertex_tets(v).size());
+    UnionFind uf(n);
+    for_star_joins(m, v, [&](std::uint32_t k, std::uint32_t o, TriId t) {
+      if (!cuts.cuts(v, t)) uf.unite(k, o);
+    });
+    std::vector<std::uint32_t> side_of_root(n, ~0u), side(n);
+    std::uint32_t sides = 0;
+    for (std::uint32_t k = 0; k < n; ++k) {
+      const std::uint32_t r = uf.find(k);
+      if (side_of_root[r] == ~0u) side_of_root[r] = sides++;
+      side[k] = side_of_root[r];
+    }
+    std::vector<char> target(sides, 0);
+    for (; i < todo.size() && todo[i].v == v; ++i)
+      if (todo[i].side < sides) target[todo[i].side] = 1;
+    for_star_joins(m, v, [&](std::uint32_t k, std::uint32_t o, TriId t) {
+      if (target[side[k]] || target[side[o]]) pairs.emplace_back(v, t);
+    });
+  }
+  VertexCuts out = VertexCuts::from_pairs(m.num_vertices(), std::move(pairs));
+  out.whole = cuts.whole;
+  return out;
+}
+
 // Merges the barycentric corners of the whole vertices back while every cell
 // stays valid (split/coarsen.h). A trial is the dual rebuilt with the trial's
 // cuts, every point at its position in the last valid mesh (the base: the split's

@@ -76,6 +76,15 @@ VertexCuts coarsen_whole_cuts(const ClassifiedTetMesh& m, const VertexCuts& free
 void label_cuts(const ClassifiedTetMesh& m, VertexId v, std::span<const std::uint32_t> label,
                 std::vector<std::pair<VertexId, TriId>>& out);
 
+// Cell c's side among its primal vertex's cells (its rank: cells are
+// numbered by vertex, then by side).
+std::uint32_t cell_side(const PolyMesh& mesh, std::uint32_t c);
+
+// `cuts` with the listed cells of whole vertices, as (vertex, side), split
+// back into their barycentric corners: every interior triangle through the
+// vertex in the side's tets cut (the coarsening's merges there undone).
+VertexCuts split_back(const ClassifiedTetMesh& m, const VertexCuts& cuts, std::span<const BadCell> cells);
+
 // Moves every point of `fresh` to the position of its partner in `old`, the
 // partners being the k-th points (by index) of one primal origin in each
 // mesh when the origin has as many points in both (a primal entity makes

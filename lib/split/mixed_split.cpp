@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <map>
+#include <span>
 
 #include "core/interrupt.h"
 #include "core/stopwatch.h"
@@ -38,15 +39,14 @@ struct MixedSplit {
     return whole[vertex_of_input[mesh.cell_primal[c].idx].idx] != 0;
   }
 
-  // One round: the primal vertices of the invalid cells are cut whole, the
+  // One round: the primal vertices of the cells `bad` are cut whole, the
   // dual rebuilt and warm-started, the corners and their neighbours
   // re-optimised, the result checked. Returns the vertices newly cut (0: no
   // progress, mesh and check unchanged).
-  std::size_t round(PolyMesh& mesh, CheckResult& check) {
+  std::size_t round(PolyMesh& mesh, CheckResult& check, std::span<const std::uint32_t> bad) {
     std::size_t added = 0;
-    for (std::size_t c = 0; c < check.verdicts.size(); ++c)
-      if (!check.verdicts[c].valid && !cut_whole(mesh, c))
-        whole[vertex_of_input[mesh.cell_primal[c].idx].idx] = 1, ++added;
+    for (std::uint32_t c : bad)
+      if (!cut_whole(mesh, c)) whole[vertex_of_input[mesh.cell_primal[c].idx].idx] = 1, ++added;
     if (added == 0) return 0;
     DualDraft draft = build_primal_dual_draft(m, dual, nullptr, &whole);
     cleanup_dual(draft);
@@ -60,6 +60,39 @@ struct MixedSplit {
     return added;
   }
 };
+
+std::vector<std::uint32_t> invalid_cells(const CheckResult& check) {
+  std::vector<std::uint32_t> out;
+  for (std::size_t c = 0; c < check.verdicts.size(); ++c)
+    if (!check.verdicts[c].valid) out.push_back(std::uint32_t(c));
+  return out;
+}
+
+// Cells that OpenFOAM's checks fail (hooks.foam_failing) once no cell is
+// invalid get their vertices cut whole too, as the tet split does
+// (split_loop.cpp's foam rounds): a round that leaves a cell invalid by the
+// exact test is undone. At most kFoamRounds; returns the vertices cut.
+std::size_t foam_rounds(MixedSplit& split, PolyMesh& mesh, CheckResult& check) {
+  constexpr int kFoamRounds = 3;
+  std::size_t cut = 0;
+  for (int i = 0; i < kFoamRounds && check.invalid_cells == 0; ++i) {
+    const std::vector<std::uint32_t> failing = split.hooks.foam_failing(mesh);
+    if (failing.empty()) break;
+    const std::vector<char> whole_before = split.whole;
+    PolyMesh old = mesh;
+    CheckResult old_check = check;
+    const std::size_t added = split.round(mesh, check, failing);
+    if (added == 0) break;
+    if (check.invalid_cells > 0) {
+      split.whole = whole_before;
+      mesh = std::move(old);
+      check = std::move(old_check);
+      break;
+    }
+    cut += added;
+  }
+  return cut;
+}
 
 }  // namespace
 
@@ -86,7 +119,7 @@ MixedSplitRun run_mixed_split(const PrimalMesh& m, const DualParams& dual, const
   std::size_t cut = 0;
   while (check.invalid_cells > 0 && rounds < params.max_rounds) {
     throw_if_interrupted();
-    const std::size_t added = split.round(mesh, check);
+    const std::size_t added = split.round(mesh, check, invalid_cells(check));
     if (added == 0) break;
     cut += added;
     ++rounds;
@@ -96,8 +129,11 @@ MixedSplitRun run_mixed_split(const PrimalMesh& m, const DualParams& dual, const
       hooks.progress(ProgressEvent{"split", rounds, params.max_rounds, clock.seconds(), detail});
     }
   }
+  const std::size_t foam_cut = hooks.foam_failing ? foam_rounds(split, mesh, check) : 0;
+  if (foam_cut > 0) ++rounds;
   Json stats = Json::object();
   stats.set("rounds", rounds);
+  stats.set("foam_whole_vertices", foam_cut);
   stats.set("whole_vertices", cut);
   stats.set("invalid_before", invalid_before);
   stats.set("invalid_after", check.invalid_cells);

@@ -31,7 +31,10 @@ namespace polydual {
 // (required) re-optimises each rebuilt dual near the cells of the vertices cut
 // whole (untangle_only false: the last round's mesh is the one kept). On
 // return `mesh` is the last round's dual and `check` its verdicts (not its
-// validation). Returns the rounds run (0: mesh and check unchanged) and the
+// validation). With hooks.foam_failing, the vertices of cells that
+// OpenFOAM's checks still fail are then cut whole too (at most three rounds,
+// each undone if it leaves a cell invalid; counted as one more round).
+// Returns the rounds run (0: mesh and check unchanged) and the
 // stage's record (rounds, whole_vertices, invalid_before/after,
 // cells_before/after). Throws Interrupted between rounds.
 struct MixedSplitRun {

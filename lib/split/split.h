@@ -90,12 +90,25 @@ SplitState begin_split(const ClassifiedTetMesh& m);
 using SplitOptimiser = std::function<Json(PolyMesh& mesh, std::span<const char> seed,
                                           std::span<const CellVerdict> verdicts, bool untangle_only)>;
 
+// The cells of a mesh that OpenFOAM's own checks fail, increasing.
+using FoamFailing = std::function<std::vector<std::uint32_t>(const PolyMesh&)>;
+
 struct SplitHooks {
   SplitOptimiser optimise;  // empty: no optimiser (the rounds are local, split/local_round.h)
   ProgressFn progress;      // after each round ("split", round, invalid cells)
   // The quality measure the coarsening bounds merged cells with (split/coarsen.h):
   // the optimiser's, so that the bound is the one its report counts against.
   Metric metric = Metric::Q1;
+  // The cells that OpenFOAM's own checks fail (face pyramids, face tets:
+  // optim/foam_gate.h's foam_check), increasing; empty: not asked. With an
+  // optimiser, the vertices of the cells the kept mesh still fails after
+  // its re-optimisation are cut whole too (SplitLoop::foam_rounds).
+  FoamFailing foam_failing;
+  // The full method with OpenFOAM's checks gating every move
+  // (OptimParams::foam_gate_sweeps), to smooth cells re-pinned for those
+  // checks without failing them again (untangle_only is false). Empty: not
+  // run.
+  SplitOptimiser optimise_foam_gated;
 };
 
 // The rounds after the first dual (the loop above): `mesh` is the first dual

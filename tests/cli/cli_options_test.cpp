@@ -259,11 +259,11 @@ TEST(CliOptions, JsonOrText) {
   EXPECT_THAT(text.out, Not(HasSubstr("\"invalid_before\"")));
   const std::string json = convert_json("--optimize none", "j.vtu");
   EXPECT_EQ(jq(json, "d['output']['format']"), "vtu");
-  EXPECT_EQ(jq(json, "sorted(d['seconds'].keys()) == sorted(['read', 'classify', 'optimize_tets', 'cuts', 'dual', 'star_test', 'split', 'check_split', 'write', "
-                     "'total', 'stages'])"),
+  EXPECT_EQ(jq(json, "sorted(d['seconds'].keys()) == sorted(['read', 'classify', 'optimize_tets', 'cuts', 'dual', 'star_test', 'split', 'check_split', "
+                     "'openfoam_check', 'write', 'total', 'stages'])"),
             "True");
   EXPECT_EQ(jq(json, "list(d['seconds']['stages'].keys())"),
-            "['read', 'classify', 'optimize_tets', 'cuts', 'dual', 'cleanup', 'cells', 'check', 'split', 'check_split', 'write']");
+            "['read', 'classify', 'optimize_tets', 'cuts', 'dual', 'cleanup', 'cells', 'check', 'split', 'check_split', 'openfoam_check', 'write']");
   CmdResult chk = run("check " + out + " --json");
   ASSERT_EQ(chk.code, 0) << chk.err;
   EXPECT_EQ(jnum(chk.out, "d['cells']"), jnum(json, "d['cells']"));

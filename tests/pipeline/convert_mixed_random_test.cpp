@@ -20,9 +20,12 @@
 #include "generate/random_mixed.h"
 #include "mesh/cell_soup.h"
 #include "mesh/validate.h"
+#include "optim/optimize.h"
+#include "mesh/model_facets.h"
 #include "core/error.h"
 #include "pipeline/convert.h"
 #include "quality/check_result.h"
+#include "split/mixed_split.h"
 
 namespace polydual {
 namespace {
@@ -172,6 +175,60 @@ TEST(ConvertMixedRandom, SameOutputForAnyThreadCount) {
     EXPECT_EQ(all.mesh.face_owner, single.mesh.face_owner) << c.name;
     EXPECT_EQ(all.mesh.cell_offsets, single.mesh.cell_offsets) << c.name;
   }
+}
+
+// The mixed split's OpenFOAM rounds (split/mixed_split.h), from the default
+// convert()'s valid mesh with the pipeline's optimiser: the primal vertex
+// whose cells the OpenFOAM hook names is cut whole, one corner per primal
+// cell round it, unless that round would leave a cell invalid (then it is
+// undone); no cell is invalid after; a hook that goes on naming corners
+// already cut stops the rounds.
+TEST(ConvertMixedRandom, CellsOpenFoamFailsAreCutIntoCorners) {
+  std::size_t cut = 0;
+  for (std::uint64_t s = 0; s < 4; ++s) {
+    const Case c = hex_case(s);
+    const ConvertResult r = convert(c.soup, PipelineParams{});
+    ASSERT_EQ(r.check.invalid_cells, 0u) << c.name;
+    const PrimalMesh& m = r.mixed->mesh;
+    VertexId v = VertexId::invalid();  // an interior vertex with the most cells round it
+    for (std::size_t x = 0; x < m.num_vertices(); ++x)
+      if (m.vertex_class(VertexId(x)).dim == 3 &&
+          (!v.valid() || m.vertex_cells(VertexId(x)).size() > m.vertex_cells(v).size()))
+        v = VertexId(x);
+    ASSERT_TRUE(v.valid()) << c.name;
+    const VertexId named(std::uint32_t(m.input_vertex(v)));
+    auto cells_of_v = [&](const PolyMesh& pm) {
+      std::size_t n = 0;
+      for (VertexId x : pm.cell_primal) n += x == named;
+      return n;
+    };
+    const ModelFacets facets = model_facets(m);
+    OptimParams optim;
+    optim.method = OptimParams::Method::Untangle;
+    SplitHooks hooks;
+    hooks.optimise = [&](PolyMesh& pm, std::span<const char> seed, std::span<const CellVerdict> verdicts, bool) {
+      return optimize(pm, &facets, optim, {}, seed, verdicts).to_json();
+    };
+    std::size_t calls = 0;
+    hooks.foam_failing = [&](const PolyMesh& pm) {
+      ++calls;
+      std::vector<std::uint32_t> cells;
+      for (std::uint32_t k = 0; k < pm.num_cells(); ++k)
+        if (pm.cell_primal[k] == named) cells.push_back(k);
+      return cells;
+    };
+    PolyMesh mesh = r.mesh;
+    CheckResult check = check_mesh(mesh, nullptr, false);
+    const std::size_t before = cells_of_v(mesh);
+    const MixedSplitRun run = run_mixed_split(m, PipelineParams{}.dual, SplitParams{}, mesh, check, hooks);
+    EXPECT_EQ(check.invalid_cells, 0u) << c.name;
+    const std::size_t after = cells_of_v(mesh);
+    const bool whole = after == m.vertex_cells(v).size();
+    EXPECT_TRUE(whole || (after == before && run.rounds == 0)) << c.name << ": " << before << " -> " << after;
+    EXPECT_EQ(calls, whole ? 2u : 1u) << c.name;  // after the cut the hook names corners only
+    cut += whole && before < after;
+  }
+  EXPECT_GT(cut, 0u);
 }
 
 }  // namespace

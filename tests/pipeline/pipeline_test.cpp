@@ -60,7 +60,7 @@ TEST(Pipeline, ConvertIsTheCompositionOfTheStages) {
   params.tetopt.enabled = false;  // the tet optimisation: tests/optim/tet_optimize_test.cpp
   std::vector<std::string> observed;
   const ConvertResult r = convert(soup, params, ConvertHooks{[&](const StageRecord& s) { observed.push_back(s.name); }, {}});
-  EXPECT_EQ(stage_names(r.report), (std::vector<std::string>{"classify", "dual", "cleanup", "cells", "check"}));
+  EXPECT_EQ(stage_names(r.report), (std::vector<std::string>{"classify", "dual", "cleanup", "cells", "check", "openfoam_check"}));
   EXPECT_EQ(observed, stage_names(r.report));
 
   // The same stages called one by one give the same mesh and verdicts.
@@ -88,7 +88,7 @@ TEST(Pipeline, OptimiseStageRunsAndIsChecked) {
   const ConvertResult r = convert(soup, params);
   // The tet optimisation runs by default (TetOptParams::enabled).
   EXPECT_EQ(stage_names(r.report), (std::vector<std::string>{"classify", "optimize_tets", "cuts", "dual", "cleanup", "cells",
-                                                           "check", "optimize", "check_after", "split", "check_split"}));
+                                                           "check", "optimize", "check_after", "split", "check_split", "openfoam_check"}));
   ASSERT_NE(r.report.stage("optimize"), nullptr);
   EXPECT_NE(r.report.stage("optimize")->stats.find("iterations"), nullptr);
   // The final check is of the optimised mesh.
@@ -136,7 +136,7 @@ TEST(Pipeline, ConvertFileReadsAndWrites) {
   params.optim.method = OptimParams::Method::None;
   const ConvertResult r = convert_file(in, (d / "c.vtu").string(), PolyFormat::Vtu, params);
   EXPECT_EQ(stage_names(r.report), (std::vector<std::string>{"read", "classify", "optimize_tets", "cuts", "dual", "cleanup",
-                                                           "cells", "check", "split", "check_split", "write"}));
+                                                           "cells", "check", "split", "check_split", "openfoam_check", "write"}));
   EXPECT_EQ(r.written.find("format")->dump(0), "\"vtu\"");
   // Each stage records the process's peak memory when it ended: a high-water
   // mark, so never lower than the stage before; the summary names them all.

@@ -6,6 +6,7 @@
 // full method once on the mesh kept).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 
 #include "classify/classify.h"
@@ -37,11 +38,13 @@ struct Driven {
   PolyMesh mesh;
   CheckResult check;
   Json stats;
+  SplitState st;
 };
 Driven drive_split(const TetSoup& soup, const PipelineParams& p, const SplitHooks& hooks) {
   Driven d;
   d.primal = classify(soup, p.classify);
-  SplitState st = begin_split(d.primal);
+  SplitState& st = d.st;
+  st = begin_split(d.primal);
   EXPECT_EQ(st.cuts.num_vertices_cut(), st.free_edge.num_vertices_cut());
   d.mesh = build_dual(d.primal, p.dual, nullptr, st.free_edge.empty() ? nullptr : &st.free_edge);
   d.check = check_mesh(d.mesh, &d.primal, false);
@@ -98,6 +101,57 @@ TEST(SplitDriver, OptimiserReachesTheLoopOnlyThroughItsCallback) {
   }
   EXPECT_GT(untangles, 0u);
   EXPECT_GT(finals, 0u);
+}
+
+// OpenFOAM's rounds (split_loop.cpp's foam_rounds): the cells of a vertex
+// that the OpenFOAM hook names end as one corner per tet of its star (the
+// vertex cut whole, or its coarsened classes split back: without an
+// optimiser the closure leaves many vertices whole and coarsened) and every
+// cell stays valid by the exact test; a hook that goes on naming corners
+// (nothing more to cut, their points already at their barycentres) ends
+// after the rounds' bound of 3.
+TEST(SplitDriver, CellsOpenFoamFailsAreCutIntoCorners) {
+  std::size_t vertices_cut = 0;
+  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+    const TetSoup soup = random_classified_mesh(split_test_mesh_params(seed));
+    const ClassifiedTetMesh primal = classify(soup, ClassifyParams{});
+    VertexId v = VertexId::invalid();  // an interior vertex with the largest star
+    for (std::size_t x = 0; x < primal.num_vertices(); ++x)
+      if (primal.vertex_class(VertexId(x)).dim == 3 &&
+          (!v.valid() || primal.vertex_tets(VertexId(x)).size() > primal.vertex_tets(v).size()))
+        v = VertexId(x);
+    ASSERT_TRUE(v.valid());
+    const VertexId named(std::uint32_t(primal.input_vertex(v)));
+    SplitHooks hooks;
+    hooks.optimise = [](PolyMesh&, std::span<const char>, std::span<const CellVerdict>, bool) {
+      return Json::object();
+    };
+    hooks.foam_failing = [&](const PolyMesh& mesh) {  // every cell of v
+      std::vector<std::uint32_t> cells;
+      for (std::uint32_t c = 0; c < mesh.num_cells(); ++c)
+        if (mesh.cell_primal[c] == named) cells.push_back(c);
+      return cells;
+    };
+    PipelineParams p;
+    p.tetopt.enabled = false;
+    const Driven d = drive_split(soup, p, hooks);
+    const std::string what = "seed " + std::to_string(seed);
+    EXPECT_EQ(d.check.invalid_cells, 0u) << what;
+    const Json* rounds = d.stats.find("foam_rounds");
+    ASSERT_NE(rounds, nullptr) << what;
+    const std::string text = rounds->dump(0);
+    std::size_t records = 0;  // one "failing_cells" per round's record
+    for (std::size_t at = text.find("\"failing_cells\""); at != std::string::npos;
+         at = text.find("\"failing_cells\"", at + 1))
+      ++records;
+    EXPECT_EQ(records, 3u) << what << text;
+    std::size_t cells_of_v = 0;
+    for (VertexId x : d.mesh.cell_primal) cells_of_v += x == named;
+    EXPECT_TRUE(d.st.cuts.is_whole(v)) << what;
+    EXPECT_EQ(cells_of_v, primal.vertex_tets(v).size()) << what;
+    vertices_cut += cells_of_v > 1;
+  }
+  EXPECT_GT(vertices_cut, 0u);
 }
 
 }  // namespace
