@@ -368,21 +368,28 @@ void SplitLoop::closure(int first) {
 //    of a curved face leaves the corner's faces warped) are put back, in
 //    place, and the mesh checked exactly.
 // A step that leaves a cell invalid by the exact test is undone (validity
-// first). The rounds' records.
+// first); the rounds stop at the first that changes nothing, and a cut
+// undone is not tried again (proofs/split.md L7). The rounds' records.
 Json SplitLoop::foam_rounds() {
   constexpr int kFoamRounds = 3;
   Json records = Json::array();
+  bool cut_undone = false;  // the same cut would be undone again: not retried
   for (int i = 0; i < kFoamRounds; ++i) {
     FoamFailures f = foam_failures();
     if (f.cells.empty()) break;
     Json r = Json::object();
     r.set("failing_cells", f.cells.size());
-    if (std::optional<Json> cut = foam_cut(f)) {
+    bool changed = false;
+    if (std::optional<Json> cut = cut_undone ? std::nullopt : foam_cut(f)) {
+      cut_undone = cut->find("undone")->dump(0) == "true";
+      changed = !cut_undone;
       r.set("cut", std::move(*cut));
-      f = foam_failures();
+      if (changed) f = foam_failures();
     }
-    r.set("repinned_points", foam_repin(f));
+    const std::size_t repinned = foam_repin(f);
+    r.set("repinned_points", repinned);
     records.push(std::move(r));
+    if (!changed && repinned == 0) break;  // nothing moved: the next round would do the same
   }
   return records;
 }
