@@ -268,7 +268,8 @@ void chain_faces(const PrimalMesh& m, const PrimalSides& sides, const MixedPoint
   const bool whole = d.is_whole(a) || d.is_whole(b);
   cuts.clear();
   // An edge classified in a region has no model face round it.
-  for (std::size_t k = 0; k < n && (whole || m.edge_class(e).dim < 3); ++k)
+  const bool may_cut = whole || m.edge_class(e).dim < 3;
+  for (std::size_t k = 0; k < n && may_cut; ++k)
     if (whole || m.face_class(ch.faces[k]).dim == 2) cuts.push_back(k);
   if (!ch.closed) cuts.push_back(n);  // faces[n] is the closing boundary face
   auto emit = [&](std::size_t s, std::size_t t, bool bounded) {

@@ -65,8 +65,7 @@ class PrimalMesh {
   PrimalFaceId cell_face(PrimalCellId c, int i) const { return cell_face_[cell_face_off_[c.idx] + i]; }
   int cell_face_side(PrimalCellId c, int i) const { return cell_face_side_[cell_face_off_[c.idx] + i]; }
   EdgeId cell_edge(PrimalCellId c, int k) const { return cell_edge_[cell_edge_off_[c.idx] + k]; }
-  // Local index of v in c, or -1 (inline: the dual's edge walks ask it at
-  // every step).
+  // Local index of v in c, or -1.
   int local_index(PrimalCellId c, VertexId v) const {
     const auto cv = cell_vertices(c);
     for (std::size_t i = 0; i < cv.size(); ++i)

@@ -313,12 +313,12 @@ VertexCuts split_back(const ClassifiedTetMesh& m, const VertexCuts& cuts, std::s
   std::vector<std::pair<VertexId, TriId>> pairs;
   for (std::size_t v = 0; v + 1 < cuts.off.size(); ++v)
     for (TriId f : cuts.of(VertexId(v))) pairs.emplace_back(VertexId(v), f);
-  std::vector<BadCell> todo(cells.begin(), cells.end());
-  std::sort(todo.begin(), todo.end(), [](const BadCell& a, const BadCell& b) {
+  std::vector<BadCell> listed(cells.begin(), cells.end());
+  std::sort(listed.begin(), listed.end(), [](const BadCell& a, const BadCell& b) {
     return a.v.idx != b.v.idx ? a.v.idx < b.v.idx : a.side < b.side;
   });
-  for (std::size_t i = 0; i < todo.size();) {
-    const VertexId v = todo[i].v;
+  for (std::size_t i = 0; i < listed.size();) {
+    const VertexId v = listed[i].v;
     // The sides of v: its star tets joined through interior triangles that
     // no cut of v separates, numbered by their first tet in star order.
     const std::uint32_t n = std::uint32_t(m.vertex_tets(v).size());
@@ -334,8 +334,8 @@ VertexCuts split_back(const ClassifiedTetMesh& m, const VertexCuts& cuts, std::s
       side[k] = side_of_root[r];
     }
     std::vector<char> target(sides, 0);
-    for (; i < todo.size() && todo[i].v == v; ++i)
-      if (todo[i].side < sides) target[todo[i].side] = 1;
+    for (; i < listed.size() && listed[i].v == v; ++i)
+      if (listed[i].side < sides) target[listed[i].side] = 1;
     for_star_joins(m, v, [&](std::uint32_t k, std::uint32_t o, TriId t) {
       if (target[side[k]] || target[side[o]]) pairs.emplace_back(v, t);
     });

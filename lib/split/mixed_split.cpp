@@ -1,5 +1,6 @@
 #include "split/mixed_split.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <map>
 #include <span>
@@ -77,7 +78,8 @@ std::size_t foam_rounds(MixedSplit& split, PolyMesh& mesh, CheckResult& check) {
   std::size_t cut = 0;
   for (int i = 0; i < kFoamRounds && check.invalid_cells == 0; ++i) {
     const std::vector<std::uint32_t> failing = split.hooks.foam_failing(mesh);
-    if (failing.empty()) break;
+    // Nothing to cut (every failing cell a corner already): no copy to undo.
+    if (std::all_of(failing.begin(), failing.end(), [&](std::uint32_t c) { return split.cut_whole(mesh, c); })) break;
     const std::vector<char> whole_before = split.whole;
     PolyMesh old = mesh;
     CheckResult old_check = check;
