@@ -126,6 +126,7 @@ void run_split_stage(ConvertResult& r, SplitState& st, const ModelFacets& facets
       if (untangle_only) {
         OptimParams untangle = params.optim;
         untangle.method = OptimParams::Method::Untangle;
+        untangle.foam_repair_untangle = false;  // the rounds' result only decides their cuts
         return optimize(mesh, &facets, untangle, {}, seed, verdicts).to_json();
       }
       const bool local = params.optim.method != OptimParams::Method::Global;

@@ -92,7 +92,6 @@ CheckResult check_mixed(const ConvertResult& r, bool with_validation) {
 OptimParams mixed_optim_params(const PipelineParams& params) {
   OptimParams optim = params.optim;
   if (optim.method == OptimParams::Method::Auto) optim.method = OptimParams::Method::Untangle;
-  optim.foam_repair_untangle = true;
   return optim;
 }
 

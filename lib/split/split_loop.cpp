@@ -500,7 +500,8 @@ Json SplitLoop::finish() {
   }
   Json stats = Json::object();
   if (params_.coarsen && check_.invalid_cells == 0 && st_.cuts.any_whole())
-    stats.set("coarsen", coarsen_split(m_, dual_, hooks_.metric, st_, mesh_, check_));
+    stats.set("coarsen", coarsen_split(m_, dual_, hooks_.metric, st_, mesh_, check_,
+                                            hooks_.optimise ? CoarsenStart::Corners : CoarsenStart::TopDown));
   if (best_round_ > 0 && hooks_.optimise) {
     const std::vector<char> seed = split_region(m_, st_.cuts, mesh_);
     stats.set("optimize", hooks_.optimise(mesh_, seed, check_.verdicts, false));
@@ -514,6 +515,9 @@ Json SplitLoop::finish() {
   stats.set("closure_rounds", closure_rounds_);
   stats.set("free_edge_vertices", st_.free_edge.num_vertices_cut());
   stats.set("vertices_cut", st_.cuts.num_vertices_cut());
+  // Vertices whose points sit at the barycentres of their entities (cut
+  // whole, possibly merged back into one cell per side by the coarsening).
+  stats.set("vertices_whole", std::size_t(std::count(st_.cuts.whole.begin(), st_.cuts.whole.end(), char(1))));
   stats.set("cells_split", split_causes(mesh_, check_, st_));
   return stats;
 }

@@ -5,8 +5,10 @@
 // a whole vertex at its barycentre) each vertex's cells fill exactly the
 // volume they filled before, vertex by vertex (a merged cell is the union of
 // its corners, and the neighbours' cells are unchanged: the whole vertex's
-// triangles keep their centres, dual/cut_topology.h kCentre); outputs are
-// the same for one and two threads.
+// triangles keep their centres, dual/cut_topology.h kCentre); the top-down
+// start (CoarsenStart::TopDown) refines only what its evaluator fails and
+// keeps fewer cells than the corners' start; outputs are the same for one
+// and two threads.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -14,9 +16,13 @@
 
 #include <tbb/global_control.h>
 
+#include "dual/build_dual.h"
 #include "generate/random_mesh.h"
 #include "mesh/validate.h"
 #include "pipeline/convert.h"
+#include "quality/check_result.h"
+#include "split/coarsen.h"
+#include "split/cuts.h"
 
 namespace polydual {
 namespace {
@@ -72,17 +78,105 @@ TEST(SplitCoarsen, RandomMeshesStayValidWithFewerCells) {
   EXPECT_GT(merged_unoptimised, 0u);
 }
 
+// Whole vertices for the start tests: every third vertex of m.
+std::vector<char> every_third(const ClassifiedTetMesh& m) {
+  std::vector<char> whole(m.num_vertices(), 0);
+  for (std::size_t v = 0; v < whole.size(); v += 3) whole[v] = 1;
+  return whole;
+}
+
+// The sides of whole vertices in `cuts` that hold more than one tet.
+std::vector<BadCell> merged_sides(const ClassifiedTetMesh& m, std::span<const char> whole, const VertexCuts& cuts) {
+  std::vector<BadCell> out;
+  for (std::size_t v = 0; v < whole.size(); ++v) {
+    if (!whole[v]) continue;
+    const std::vector<std::uint32_t> side = star_sides(m, VertexId(v), &cuts);
+    std::map<std::uint32_t, int> n;
+    for (std::uint32_t s : side) ++n[s];
+    for (const auto& [s, count] : n)
+      if (count > 1) out.push_back({VertexId(v), s});
+  }
+  return out;
+}
+
+// The top-down start only refines what fails: an evaluator that fails every
+// merged cell gets the corners back (the valid start), one that fails
+// nothing keeps every whole vertex one cell per side (no label cut).
+TEST(SplitCoarsen, TopDownStartRefinesOnlyWhatFails) {
+  for (int i = 0; i < 6; ++i) {
+    const ConvertResult r = run(random_classified_mesh(coarsen_mesh(i)), OptimParams::Method::None, false);
+    const ClassifiedTetMesh& m = r.primal;
+    const VertexCuts free = free_edge_cuts(m);
+    const std::vector<char> whole = every_third(m);
+    const VertexCuts corners = with_whole_cuts(m, free, whole);
+    std::size_t evaluations = 0;
+    const VertexCuts refused = coarsen_whole_cuts(
+        m, free, whole,
+        [&](const VertexCuts& c) {
+          ++evaluations;
+          return merged_sides(m, whole, c);
+        },
+        nullptr, kCoarsenMaxPasses, CoarsenStart::TopDown);
+    EXPECT_TRUE(refused.tri == corners.tri) << "mesh " << i;
+    EXPECT_GT(evaluations, 1u) << "mesh " << i;
+    const VertexCuts accepted = coarsen_whole_cuts(
+        m, free, whole, [](const VertexCuts&) { return std::vector<BadCell>{}; }, nullptr, kCoarsenMaxPasses,
+        CoarsenStart::TopDown);
+    VertexCuts expected = free;
+    expected.whole = whole;
+    EXPECT_TRUE(accepted.tri == expected.tri) << "mesh " << i;
+    EXPECT_TRUE(merged_sides(m, whole, accepted).size() > 0) << "mesh " << i;
+  }
+}
+
+// Without an optimiser the coarsening starts top-down: fewer cells than from
+// the corners on this family (the merged cells are judged where the pinned
+// points put them, exactly, in both).
+TEST(SplitCoarsen, TopDownStartKeepsFewerCellsThanCorners) {
+  std::size_t top_down = 0, corners = 0;
+  for (int i = 0; i < 12; ++i) {
+    const ConvertResult r = run(random_classified_mesh(coarsen_mesh(i)), OptimParams::Method::None, false);
+    const ClassifiedTetMesh& m = r.primal;
+    const VertexCuts free = free_edge_cuts(m);
+    const std::vector<char> whole = every_third(m);
+    const DualParams dual;
+    auto evaluate = [&](const VertexCuts& c) {
+      const PolyMesh pm = build_dual(m, dual, nullptr, &c);
+      const CheckResult check = check_mesh(pm, &m, false);
+      const std::vector<VertexId> internal = internal_of_input(m);
+      std::vector<BadCell> bad;
+      std::uint32_t rank = 0;
+      for (std::size_t k = 0; k < pm.num_cells(); ++k) {
+        rank = k > 0 && pm.cell_primal[k] == pm.cell_primal[k - 1] ? rank + 1 : 0;
+        const VertexId v = internal[pm.cell_primal[k].idx];
+        // The whole vertices' cells only: the corners are valid (the
+        // coarsening's precondition), the other cells need not be.
+        if (whole[v.idx] && !check.verdicts[k].valid) bad.push_back({v, rank});
+      }
+      return bad;
+    };
+    for (const CoarsenStart start : {CoarsenStart::Corners, CoarsenStart::TopDown}) {
+      const VertexCuts c = coarsen_whole_cuts(m, free, whole, evaluate, nullptr, kCoarsenMaxPasses, start);
+      ASSERT_TRUE(evaluate(c).empty()) << "mesh " << i;
+      (start == CoarsenStart::TopDown ? top_down : corners) += build_dual(m, dual, nullptr, &c).num_cells();
+    }
+  }
+  EXPECT_LT(top_down, corners);
+}
+
 TEST(SplitCoarsen, SameOutputForAnyThreadCount) {
-  for (int i = 1; i < 4; ++i) {
+  for (int i = 1; i < 6; ++i) {
     const TetSoup soup = random_classified_mesh(coarsen_mesh(i));
+    // Both starts: the optimiser's (from the corners) and top-down.
+    const auto method = i % 2 == 0 ? OptimParams::Method::None : OptimParams::Method::Local;
     ConvertResult one, two;
     {
       tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
-      one = run(soup, OptimParams::Method::Local, true);
+      one = run(soup, method, true);
     }
     {
       tbb::global_control c(tbb::global_control::max_allowed_parallelism, 2);
-      two = run(soup, OptimParams::Method::Local, true);
+      two = run(soup, method, true);
     }
     ASSERT_EQ(one.mesh.num_cells(), two.mesh.num_cells()) << "mesh " << i;
     ASSERT_EQ(one.mesh.points.size(), two.mesh.points.size()) << "mesh " << i;
