@@ -1,7 +1,6 @@
 #include "split/coarsen.h"
 
 #include <algorithm>
-#include <numeric>
 #include <stdexcept>
 #include <utility>
 
@@ -265,69 +264,45 @@ void bisect_class(const ClassifiedTetMesh& m, VertexId v, std::vector<std::uint3
   for (std::size_t i = cut; i < key.size(); ++i) label[key[i].second] = fresh;
 }
 
-// The top-down start's labels and what a failing cell asks of them.
-struct TopDown {
-  const ClassifiedTetMesh& m;
-  std::vector<std::int32_t> index_of;  // vertex -> its index in xs, -1: not whole
-  std::vector<std::vector<std::uint32_t>> label;
-  std::vector<std::uint32_t> fresh;  // per whole vertex, the next unused label
-
-  // (xs index, class) into out when that class has several tets.
-  bool add_if_merged(std::size_t i, std::uint32_t cls, std::vector<std::pair<std::size_t, std::uint32_t>>& out) const {
-    if (std::count(label[i].begin(), label[i].end(), cls) < 2) return false;
-    out.emplace_back(i, cls);
-    return true;
-  }
-
-  // The classes to bisect for the failing cell c of the trial `cuts`: its
-  // own if it merged several tets, else the merged classes of the whole
-  // vertices round its tets.
-  void blame(const VertexCuts& cuts, const BadCell& c, std::vector<std::pair<std::size_t, std::uint32_t>>& out) const {
-    const std::vector<std::uint32_t> side = star_sides(m, c.v, &cuts);
-    const std::span<const TetId> tets = m.vertex_tets(c.v);
-    const std::int32_t iw = index_of[c.v.idx];
-    const std::uint32_t k0 = std::uint32_t(std::find(side.begin(), side.end(), c.side) - side.begin());
-    if (iw >= 0 && k0 < side.size() && add_if_merged(std::size_t(iw), label[std::size_t(iw)][k0], out)) return;
-    for (std::uint32_t k = 0; k < side.size(); ++k) {
-      if (side[k] != c.side) continue;
-      for (VertexId u : m.tet(tets[k])) {
-        const std::int32_t iu = index_of[u.idx];
-        if (u == c.v || iu < 0) continue;
-        add_if_merged(std::size_t(iu), label[std::size_t(iu)][m.star_rank(u, tets[k])], out);
-      }
-    }
-  }
-};
-
-// The coarsening's first step with CoarsenStart::TopDown (coarsen.h); the
-// labels reached become xs's classes.
+// The coarsening's first step with CoarsenStart::TopDown (coarsen.h): each
+// whole vertex xs[i] labels its star tets (label[i]), all alike at first;
+// while a trial has failing cells, the class of each is bisected. Only the
+// cells of a vertex whose labels changed can change (proofs/split.md L6,
+// Claim 1), and a class of one tet is its corner, as at the start: a
+// failing cell is always a class of several tets. The labels reached
+// become xs's classes.
 void top_down(const ClassifiedTetMesh& m, const VertexCuts& free_edge, std::span<const char> whole,
               std::vector<Vertex>& xs, const CutsEvaluator& evaluate, CoarsenStats& st) {
-  TopDown td{m, std::vector<std::int32_t>(m.num_vertices(), -1), {}, std::vector<std::uint32_t>(xs.size(), 1)};
+  std::vector<std::int32_t> index_of(m.num_vertices(), -1);
+  std::vector<std::vector<std::uint32_t>> label;
+  std::vector<std::uint32_t> fresh(xs.size(), 1);  // per whole vertex, the next unused label
   for (std::size_t i = 0; i < xs.size(); ++i) {
-    td.index_of[xs[i].v.idx] = std::int32_t(i);
-    td.label.emplace_back(xs[i].size, 0u);
+    index_of[xs[i].v.idx] = std::int32_t(i);
+    label.emplace_back(xs[i].size, 0u);
   }
   for (;;) {
-    const VertexCuts cuts = cuts_of_labels(m, free_edge, whole, xs, td.label);
+    const VertexCuts cuts = cuts_of_labels(m, free_edge, whole, xs, label);
     const std::vector<BadCell> bad = evaluate(cuts);
     ++st.evaluations;
     if (bad.empty()) break;
-    std::vector<std::pair<std::size_t, std::uint32_t>> split;
-    for (const BadCell& c : bad) td.blame(cuts, c, split);
+    std::vector<std::pair<std::size_t, std::uint32_t>> split;  // (xs index, class)
+    for (const BadCell& c : bad) {
+      const std::int32_t i = index_of[c.v.idx];
+      const std::vector<std::uint32_t> side = i < 0 ? std::vector<std::uint32_t>{} : star_sides(m, c.v, &cuts);
+      const std::size_t k = std::size_t(std::find(side.begin(), side.end(), c.side) - side.begin());
+      if (k == side.size() || std::count(side.begin(), side.end(), c.side) < 2)
+        throw std::logic_error("coarsen top-down: a cell that is not a merged class failed");
+      split.emplace_back(std::size_t(i), label[std::size_t(i)][k]);
+    }
     std::sort(split.begin(), split.end());
     split.erase(std::unique(split.begin(), split.end()), split.end());
-    if (split.empty()) {  // not expected (the blame's reason): the corners, valid
-      for (auto& l : td.label) std::iota(l.begin(), l.end(), 0u);
-      break;
-    }
-    for (const auto& [i, cls] : split) bisect_class(m, xs[i].v, td.label[i], cls, td.fresh[i]++);
+    for (const auto& [i, cls] : split) bisect_class(m, xs[i].v, label[i], cls, fresh[i]++);
     st.bisections += split.size();
   }
   for (std::size_t i = 0; i < xs.size(); ++i) {
-    std::vector<std::uint32_t> first(td.fresh[i], ~0u);  // per label, its first tet
+    std::vector<std::uint32_t> first(fresh[i], ~0u);  // per label, its first tet
     for (std::uint32_t k = 0; k < xs[i].size; ++k) {
-      std::uint32_t& f = first[td.label[i][k]];
+      std::uint32_t& f = first[label[i][k]];
       if (f == ~0u) f = k;
       xs[i].parent.unite(f, k);
     }

@@ -22,12 +22,10 @@
 // in the next pass and stops after kMaxFailures such reverts.
 // The passes start from the corners, or (CoarsenStart::TopDown) from the
 // first valid trial of a descent from the other end: every whole vertex one
-// cell per side, and while a trial has failing cells, the classes they
-// blame bisected by planes through their vertex (a failing cell of several
-// tets: its own class; a single corner, or a cell of a vertex not cut
-// whole: the merged classes of the whole vertices round its tets, since
-// with those back at their corners the cell is the start's, valid); if no
-// class is left to bisect, every vertex goes back to its corners.
+// cell per side, then, while a trial has failing cells, the class of each
+// bisected by a plane through its vertex. Only a vertex's own classes make
+// its cells (proofs/split.md L6, Claim 1), so a failing cell is always a
+// class of several tets, and the descent ends, at worst at the corners.
 #pragma once
 #include <cstddef>
 #include <functional>
