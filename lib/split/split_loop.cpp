@@ -373,8 +373,9 @@ void SplitLoop::closure(int first) {
 //    of a curved face leaves the corner's faces warped) are put back, in
 //    place, and the mesh checked exactly.
 // A step that leaves a cell invalid by the exact test is undone (validity
-// first); the rounds stop at the first that changes nothing, and a cut
-// undone is not tried again (proofs/split.md L7). The rounds' records.
+// first), and so is a cut after which as many cells fail OpenFOAM's checks;
+// the rounds stop at the first that changes nothing, and a cut undone is
+// not tried again (proofs/split.md L7). The rounds' records.
 Json SplitLoop::foam_rounds() {
   constexpr int kFoamRounds = 3;
   Json records = Json::array();
@@ -432,7 +433,9 @@ std::optional<FoamCut> SplitLoop::foam_cut(const FoamFailures& f) {
     r.set("optimize", hooks_.optimise(mesh_, split_region(m_, st_.cuts, mesh_), check_.verdicts, false));
     check_ = check_mesh(mesh_, &m_, false);
   }
-  const bool undone = check_.invalid_cells > 0;
+  // Validity first; and a cut must lower the count of failing cells (the
+  // corners of a cut vertex can fail in turn where no optimiser smooths).
+  const bool undone = check_.invalid_cells > 0 || hooks_.foam_failing(mesh_).size() >= f.cells.size();
   r.set("vertices", changed.size());
   r.set("undone", undone);
   if (undone) {

@@ -107,11 +107,12 @@ TEST(SplitDriver, OptimiserReachesTheLoopOnlyThroughItsCallback) {
 // that the OpenFOAM hook names end as one corner per tet of its star (the
 // vertex cut whole, or its coarsened classes split back: without an
 // optimiser the closure leaves many vertices whole and coarsened) and every
-// cell stays valid by the exact test; a hook that goes on naming corners
-// (nothing more to cut, their points already at their barycentres) ends the
-// rounds at the first that changes nothing.
+// cell stays valid by the exact test, when the cut lowers the count of
+// failing cells (a hook naming v's cells until they are its corners); a cut
+// after which as many cells fail (a hook naming every cell of v, corners
+// too) is undone and not tried again.
 TEST(SplitDriver, CellsOpenFoamFailsAreCutIntoCorners) {
-  std::size_t vertices_cut = 0;
+  std::size_t vertices_cut = 0, cuts_undone = 0;
   for (std::uint64_t seed = 1; seed <= 6; ++seed) {
     const TetSoup soup = random_classified_mesh(split_test_mesh_params(seed));
     const ClassifiedTetMesh primal = classify(soup, ClassifyParams{});
@@ -122,36 +123,51 @@ TEST(SplitDriver, CellsOpenFoamFailsAreCutIntoCorners) {
         v = VertexId(x);
     ASSERT_TRUE(v.valid());
     const VertexId named(std::uint32_t(primal.input_vertex(v)));
-    SplitHooks hooks;
-    hooks.optimise = [](PolyMesh&, std::span<const char>, std::span<const CellVerdict>, bool) {
-      return Json::object();
-    };
-    hooks.foam_failing = [&](const PolyMesh& mesh) {  // every cell of v
+    const std::size_t star = primal.vertex_tets(v).size();
+    auto cells_of = [&](const PolyMesh& mesh) {
       std::vector<std::uint32_t> cells;
       for (std::uint32_t c = 0; c < mesh.num_cells(); ++c)
         if (mesh.cell_primal[c] == named) cells.push_back(c);
       return cells;
     };
-    PipelineParams p;
-    p.tetopt.enabled = false;
-    const Driven d = drive_split(soup, p, hooks);
-    const std::string what = "seed " + std::to_string(seed);
-    EXPECT_EQ(d.check.invalid_cells, 0u) << what;
-    const Json* rounds = d.stats.find("foam_rounds");
-    ASSERT_NE(rounds, nullptr) << what;
-    const std::string text = rounds->dump(0);
-    std::size_t records = 0;  // one "failing_cells" per round's record
-    for (std::size_t at = text.find("\"failing_cells\""); at != std::string::npos;
-         at = text.find("\"failing_cells\"", at + 1))
-      ++records;
-    EXPECT_EQ(records, 2u) << what << text;  // the cut, then a round that changes nothing
-    std::size_t cells_of_v = 0;
-    for (VertexId x : d.mesh.cell_primal) cells_of_v += x == named;
-    EXPECT_TRUE(d.st.cuts.is_whole(v)) << what;
-    EXPECT_EQ(cells_of_v, primal.vertex_tets(v).size()) << what;
-    vertices_cut += cells_of_v > 1;
+    for (const bool corners_pass : {true, false}) {
+      SplitHooks hooks;
+      hooks.optimise = [](PolyMesh&, std::span<const char>, std::span<const CellVerdict>, bool) {
+        return Json::object();
+      };
+      hooks.foam_failing = [&](const PolyMesh& mesh) {
+        std::vector<std::uint32_t> cells = cells_of(mesh);
+        if (corners_pass && cells.size() == star) cells.clear();
+        return cells;
+      };
+      PipelineParams p;
+      p.tetopt.enabled = false;
+      const Driven d = drive_split(soup, p, hooks);
+      const std::string what = "seed " + std::to_string(seed) + (corners_pass ? " corners pass" : " all fail");
+      EXPECT_EQ(d.check.invalid_cells, 0u) << what;
+      const Json* rounds = d.stats.find("foam_rounds");
+      ASSERT_NE(rounds, nullptr) << what;
+      const std::string text = rounds->dump(0);
+      std::size_t records = 0;  // one "failing_cells" per round's record
+      for (std::size_t at = text.find("\"failing_cells\""); at != std::string::npos;
+           at = text.find("\"failing_cells\"", at + 1))
+        ++records;
+      const std::size_t cells_of_v = cells_of(d.mesh).size();
+      if (corners_pass) {
+        EXPECT_EQ(records, 1u) << what << text;  // the cut; then nothing fails
+        EXPECT_TRUE(d.st.cuts.is_whole(v)) << what;
+        EXPECT_EQ(cells_of_v, star) << what;
+        vertices_cut += cells_of_v > 1;
+      } else {
+        EXPECT_LE(records, 2u) << what << text;  // at most the cut undone, then nothing to do
+        if (text.find("\"undone\":true") == std::string::npos) continue;  // v was already corners
+        EXPECT_LT(cells_of_v, star) << what;
+        ++cuts_undone;
+      }
+    }
   }
   EXPECT_GT(vertices_cut, 0u);
+  EXPECT_GT(cuts_undone, 0u);
 }
 
 }  // namespace
