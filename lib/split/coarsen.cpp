@@ -8,8 +8,11 @@
 #include "core/union_find.h"
 #include "dual/build_dual.h"
 #include "quality/metrics.h"
+#include "mesh/sub_mesh.h"
+#include "quality/star_verdict.h"
 #include "quality/stencil.h"
 #include "split/cuts.h"
+#include "split/local_round.h"
 #include "split/recheck.h"
 
 namespace polydual {
@@ -385,6 +388,89 @@ std::vector<PointId> warm_start_by_rank(PolyMesh& fresh, const PolyMesh& old) {
 // (internal numbering) and the cell's rank among that vertex's cells.
 namespace {
 
+// Trials judged locally, when no optimiser moved a point (every point is
+// where the build puts it). A whole vertex's cells depend on its own cuts
+// only (proofs/split.md L6, Claim 1), so each trial builds, on the sub-mesh
+// of their stars, only the cells of the whole vertices whose cuts differ
+// from the last trial's (a sub-mesh's cells of a vertex whose star it holds
+// are its cells in the whole mesh's dual: L5) and star-tests them exactly;
+// the others keep their failing sides. A merged cell above
+// max(kMergeQualityBound, its vertex's worst corner) fails too.
+class LocalTrials {
+ public:
+  // start: the cuts the coarsening starts from (every cell valid).
+  LocalTrials(const ClassifiedTetMesh& m, const DualParams& dual, Metric metric, const std::vector<double>& worst,
+              const VertexCuts& start)
+      : m_(m), dual_(dual), metric_(metric), worst_(worst), collapse_(dual_collapse_length(m, dual)),
+        cuts_(m.num_vertices()), bad_(m.num_vertices()) {
+    for (std::size_t v = 0; v < start.whole.size(); ++v)
+      if (start.whole[v]) cuts_[v].assign(start.of(VertexId(v)).begin(), start.of(VertexId(v)).end());
+  }
+
+  std::vector<BadCell> operator()(const VertexCuts& cuts) {
+    std::vector<VertexId> changed;
+    for (std::size_t v = 0; v < cuts.whole.size(); ++v) {
+      const std::span<const TriId> now = cuts.of(VertexId(v));
+      if (cuts.whole[v] && !std::equal(now.begin(), now.end(), cuts_[v].begin(), cuts_[v].end())) {
+        changed.push_back(VertexId(v));
+        cuts_[v].assign(now.begin(), now.end());
+        bad_[v].clear();
+      }
+    }
+    if (!changed.empty()) test(cuts, changed);
+    std::vector<BadCell> bad;
+    for (std::size_t v = 0; v < bad_.size(); ++v)
+      for (std::uint32_t side : bad_[v]) bad.push_back({VertexId(v), side});
+    return bad;
+  }
+
+ private:
+  // The failing sides of the changed vertices' cells into bad_.
+  void test(const VertexCuts& cuts, const std::vector<VertexId>& changed) {
+    const std::vector<TetId> tets = star_tets(m_, changed);
+    const bool on_whole = double(tets.size()) > kWholeMeshShare * double(m_.num_tets());
+    const SubMesh sub = on_whole ? SubMesh{} : sub_mesh(m_, tets);
+    const ClassifiedTetMesh& mesh = on_whole ? m_ : sub.mesh;
+    std::vector<char> active(mesh.num_vertices(), 0);
+    if (on_whole)
+      for (VertexId v : changed) active[v.idx] = 1;
+    else
+      for (std::size_t v = 0; v < sub.vertex.size(); ++v)
+        active[v] = std::binary_search(changed.begin(), changed.end(), sub.vertex[v]);
+    const VertexCuts local_cuts = on_whole ? cuts : restrict_cuts(m_, sub, cuts);
+    const DualScope scope{active, collapse_};
+    const PolyMesh pm = build_dual(mesh, dual_, nullptr, &local_cuts, &scope);
+    // Cells come by vertex (input numbering, increasing), then by side.
+    std::vector<std::uint32_t> cells, vertex_of;
+    for (std::size_t c = 0, v = 0; c < pm.num_cells(); ++c) {
+      while (v < mesh.num_vertices() && mesh.input_vertex(VertexId(v)) != pm.cell_primal[c].idx) ++v;
+      if (v == mesh.num_vertices()) throw std::logic_error("coarsen's local trial: cells not in vertex order");
+      if (!active[v]) continue;
+      cells.push_back(std::uint32_t(c));
+      vertex_of.push_back(on_whole ? std::uint32_t(v) : sub.vertex[v].idx);
+    }
+    std::vector<CellVerdict> verdicts(pm.num_cells());
+    star_shaped_verdicts_of(pm, cells, verdicts, {});
+    const MeshStencil stencil = build_stencil(pm);
+    std::uint32_t rank = 0;
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+      rank = i > 0 && vertex_of[i] == vertex_of[i - 1] ? rank + 1 : 0;
+      const std::uint32_t v = vertex_of[i];
+      if (!verdicts[cells[i]].valid ||
+          cell_quality(stencil, cells[i], metric_, pm.points) > std::max(kMergeQualityBound, worst_[v]))
+        bad_[v].push_back(rank);
+    }
+  }
+
+  const ClassifiedTetMesh& m_;
+  const DualParams& dual_;
+  Metric metric_;
+  const std::vector<double>& worst_;
+  double collapse_;
+  std::vector<std::vector<TriId>> cuts_;        // per whole vertex, its cuts in the last trial
+  std::vector<std::vector<std::uint32_t>> bad_;  // and its failing sides there
+};
+
 std::vector<BadCell> bad_cells(const SplitState& st, const PolyMesh& mesh, const CheckResult& check) {
   std::vector<BadCell> bad;
   std::uint32_t rank = 0;
@@ -472,13 +558,37 @@ VertexCuts split_back(const ClassifiedTetMesh& m, const VertexCuts& cuts, std::s
 // and the split's final optimisation then smooths it. (Untangling each trial
 // before judging it kept 7-30 % more merges but cost up to 19 s on a
 // 13k-tet TetGen mesh against 0.5 s: measured.)
+namespace {
+// The whole build of cuts judged by local trials, checked exactly, in mesh
+// and check when no cell is invalid; false (both untouched) otherwise.
+bool adopt_whole_build(const ClassifiedTetMesh& m, const DualParams& dual, const VertexCuts& cuts, PolyMesh& mesh,
+                       CheckResult& check) {
+  PolyMesh fresh = build_dual(m, dual, nullptr, &cuts);
+  const std::vector<PointId> from_old = warm_start_by_rank(fresh, mesh);
+  CheckResult c = recheck_mesh(fresh, mesh, check, from_old);
+  if (c.invalid_cells > 0) return false;
+  mesh = std::move(fresh);
+  check = std::move(c);
+  return true;
+}
+}  // namespace
+
 Json coarsen_split(const ClassifiedTetMesh& m, const DualParams& dual, Metric metric, SplitState& st, PolyMesh& mesh,
-                   CheckResult& check_base, CoarsenStart start) {
+                   CheckResult& check_base, CoarsenStart start, bool local) {
   const Stopwatch clock;
   VertexCuts base_cuts = st.cuts;
   const std::vector<double> worst =
       whole_cell_quality(st, st.cuts, mesh, check_base, metric, nullptr, kMergeQualityBound, nullptr);
+  // Without an optimiser every point is where the build puts it: trials are
+  // judged locally (LocalTrials) and the cuts kept are built once at the end.
+  bool local_trials = local && start == CoarsenStart::TopDown;
+  LocalTrials trials(m, dual, metric, worst, st.cuts);
   auto evaluate = [&](const VertexCuts& cuts) {
+    if (local_trials) {
+      std::vector<BadCell> bad = trials(cuts);
+      if (bad.empty()) base_cuts = cuts;
+      return bad;
+    }
     PolyMesh fresh = build_dual(m, dual, nullptr, &cuts);
     const std::vector<PointId> from_old = warm_start_by_rank(fresh, mesh);
     CheckResult check = recheck_mesh(fresh, mesh, check_base, from_old);
@@ -493,8 +603,16 @@ Json coarsen_split(const ClassifiedTetMesh& m, const DualParams& dual, Metric me
   };
   const std::size_t cells_before = mesh.num_cells();
   CoarsenStats cs;
-  const VertexCuts coarse = coarsen_whole_cuts(m, st.free_edge, st.cuts.whole, evaluate, &cs, kCoarsenMaxPasses, start);
+  VertexCuts coarse = coarsen_whole_cuts(m, st.free_edge, st.cuts.whole, evaluate, &cs, kCoarsenMaxPasses, start);
+  if (local_trials && !adopt_whole_build(m, dual, base_cuts, mesh, check_base)) {
+    // Not expected (L5, L6): the coarsening again, every trial a whole build.
+    local_trials = false;
+    base_cuts = st.cuts;
+    cs = CoarsenStats{};
+    coarse = coarsen_whole_cuts(m, st.free_edge, st.cuts.whole, evaluate, &cs, kCoarsenMaxPasses, start);
+  }
   Json j = cs.to_json();
+  j.set("trials", local_trials ? "local" : "whole");
   j.set("cells_before", cells_before);
   j.set("cells_after", mesh.num_cells());
   // The coarsening ends on the cuts of its last valid trial (or where it began).

@@ -116,7 +116,14 @@ std::vector<PointId> warm_start_by_rank(PolyMesh& fresh, const PolyMesh& old);
 // and above its vertex's worst corner (cell_quality with `metric`) fails like
 // an invalid one. Leaves the last valid trial in mesh, check_base (verdicts)
 // and st.cuts; returns the step's record.
+// With CoarsenStart::TopDown (no optimiser: every point where the build puts
+// it) and `local`, a trial builds and star-tests only the cells of the
+// whole vertices whose cuts changed since the last trial, on the sub-mesh of
+// their stars (proofs/split.md L5, L6 Claim 1), and the cuts kept are built
+// once at the end and checked exactly (should that build fail, the
+// coarsening runs again with whole builds); `local` false: every trial a
+// whole build, the reference the tests compare with.
 Json coarsen_split(const ClassifiedTetMesh& m, const DualParams& dual, Metric metric, SplitState& st, PolyMesh& mesh,
-                   CheckResult& check_base, CoarsenStart start = CoarsenStart::Corners);
+                   CheckResult& check_base, CoarsenStart start = CoarsenStart::Corners, bool local = true);
 
 }  // namespace polydual

@@ -36,20 +36,27 @@ TriId sub_triangle(const ClassifiedTetMesh& m, const SubMesh& s, const std::vect
   return TriId::invalid();
 }
 
-// The free-edge cuts of the whole mesh restricted to the sub-mesh: the cut
-// triangles with both tets in it.
-VertexCuts sub_free_edge_cuts(const ClassifiedTetMesh& m, const SubMesh& s, const VertexCuts& free_edge) {
-  if (free_edge.empty()) return {};
+}  // namespace
+
+VertexCuts restrict_cuts(const ClassifiedTetMesh& m, const SubMesh& s, const VertexCuts& cuts) {
+  if (cuts.empty()) return {};
   std::vector<std::uint32_t> sub_of(m.num_tets(), std::uint32_t(-1));
   for (std::size_t t = 0; t < s.tet.size(); ++t) sub_of[s.tet[t].idx] = std::uint32_t(t);
   std::vector<std::pair<VertexId, TriId>> pairs;
   for (std::size_t v = 0; v < s.vertex.size(); ++v)
-    for (TriId f : free_edge.of(s.vertex[v])) {
+    for (TriId f : cuts.of(s.vertex[v])) {
       const TriId g = sub_triangle(m, s, sub_of, f);
       if (g.valid()) pairs.emplace_back(VertexId(v), g);
     }
-  return VertexCuts::from_pairs(s.mesh.num_vertices(), std::move(pairs));
+  VertexCuts out = VertexCuts::from_pairs(s.mesh.num_vertices(), std::move(pairs));
+  if (cuts.any_whole()) {
+    out.whole.assign(s.vertex.size(), 0);
+    for (std::size_t v = 0; v < s.vertex.size(); ++v) out.whole[v] = cuts.is_whole(s.vertex[v]);
+  }
+  return out;
 }
+
+namespace {
 
 // The cuts of ld's mesh: `free` (its free-edge cuts) and the whole cuts of
 // the vertices marked in `whole` (m's numbering).
@@ -93,7 +100,7 @@ LocalDual local_dual(const ClassifiedTetMesh& m, const VertexCuts& free_edge, st
   tets = std::vector<TetId>();
   lap(out, "sub_mesh");
   VertexCuts sub_free;
-  if (!out.on_whole_mesh) sub_free = sub_free_edge_cuts(m, out.sub, free_edge);
+  if (!out.on_whole_mesh) sub_free = restrict_cuts(m, out.sub, free_edge);
   const VertexCuts cuts = local_cuts(out, m, out.on_whole_mesh ? free_edge : sub_free, whole);
   lap(out, "cuts");
   const DualScope scope{out.active, collapse_length};

@@ -49,6 +49,11 @@ struct LocalDual {
   VertexId whole_vertex(std::size_t v) const { return on_whole_mesh ? VertexId(v) : sub.vertex[v]; }
 };
 constexpr double kWholeMeshShare = 0.5;
+
+// `cuts` (m's numbering) restricted to the sub-mesh s: the cut triangles
+// with both tets in it, and the whole flags of its vertices.
+VertexCuts restrict_cuts(const ClassifiedTetMesh& m, const SubMesh& s, const VertexCuts& cuts);
+
 LocalDual local_dual(const ClassifiedTetMesh& m, const VertexCuts& free_edge, std::span<const char> whole,
                      std::span<const VertexId> changed, const DualParams& params, double collapse_length,
                      double whole_mesh_share = kWholeMeshShare);

@@ -12,6 +12,7 @@
 #include "classify/classify.h"
 #include "dual/build_dual.h"
 #include "pipeline/convert.h"
+#include "split/coarsen.h"
 #include "split/split.h"
 #include "split_random_meshes.h"
 
@@ -101,6 +102,41 @@ TEST(SplitDriver, OptimiserReachesTheLoopOnlyThroughItsCallback) {
   }
   EXPECT_GT(untangles, 0u);
   EXPECT_GT(finals, 0u);
+}
+
+// Without an optimiser the coarsening judges its trials locally (the cells
+// of the vertices whose cuts changed, on the sub-mesh of their stars): the
+// same cuts, mesh and verdicts as with every trial a whole build.
+TEST(SplitDriver, LocalCoarseningTrialsMatchWholeBuilds) {
+  std::size_t merged = 0;
+  for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+    RandomMeshParams mp = split_test_mesh_params(seed);
+    // Large enough that the trials' stars are a small part of the mesh
+    // (the sub-mesh path; below LocalTrials' share the whole mesh is used).
+    mp.num_points = seed % 2 == 0 ? 600 : mp.num_points;
+    const TetSoup soup = random_classified_mesh(mp);
+    PipelineParams p;
+    p.optim.method = OptimParams::Method::None;
+    p.tetopt.enabled = false;
+    p.split.coarsen = false;
+    p.split.max_rounds = 1;  // the closure then cuts many vertices whole
+    const Driven d = drive_split(soup, p, {});
+    if (!d.st.cuts.any_whole()) continue;
+    SplitState a = d.st, b = d.st;
+    PolyMesh ma = d.mesh, mb = d.mesh;
+    CheckResult ca = d.check, cb = d.check;
+    const Json ja = coarsen_split(d.primal, p.dual, Metric::Q1, a, ma, ca, CoarsenStart::TopDown, true);
+    const Json jb = coarsen_split(d.primal, p.dual, Metric::Q1, b, mb, cb, CoarsenStart::TopDown, false);
+    const std::string what = "seed " + std::to_string(seed);
+    EXPECT_EQ(ja.find("trials")->dump(0), "\"local\"") << what;
+    EXPECT_TRUE(a.cuts.tri == b.cuts.tri) << what;
+    expect_same_mesh(ma, mb, what);
+    EXPECT_EQ(ca.invalid_cells, 0u) << what;
+    ASSERT_EQ(ca.verdicts.size(), cb.verdicts.size()) << what;
+    for (std::size_t c = 0; c < ca.verdicts.size(); ++c) EXPECT_EQ(ca.verdicts[c].valid, cb.verdicts[c].valid) << what;
+    merged += ma.num_cells() < d.mesh.num_cells();
+  }
+  EXPECT_GT(merged, 0u);
 }
 
 // OpenFOAM's rounds (split_loop.cpp's foam_rounds): the cells of a vertex
