@@ -1,6 +1,7 @@
 #include "split/coarsen.h"
 
 #include <algorithm>
+#include <optional>
 #include <stdexcept>
 #include <utility>
 
@@ -582,10 +583,11 @@ Json coarsen_split(const ClassifiedTetMesh& m, const DualParams& dual, Metric me
   // Without an optimiser every point is where the build puts it: trials are
   // judged locally (LocalTrials) and the cuts kept are built once at the end.
   bool local_trials = local && start == CoarsenStart::TopDown;
-  LocalTrials trials(m, dual, metric, worst, st.cuts);
+  std::optional<LocalTrials> trials;  // only then: it copies every whole vertex's cuts
+  if (local_trials) trials.emplace(m, dual, metric, worst, st.cuts);
   auto evaluate = [&](const VertexCuts& cuts) {
     if (local_trials) {
-      std::vector<BadCell> bad = trials(cuts);
+      std::vector<BadCell> bad = (*trials)(cuts);
       if (bad.empty()) base_cuts = cuts;
       return bad;
     }

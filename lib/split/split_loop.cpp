@@ -109,6 +109,7 @@ struct FoamFailures {
 struct FoamCut {
   Json record;
   bool undone = false;
+  FoamFailures after;  // the cells failing after a cut kept
 };
 
 // One run of the loop: its inputs, the current mesh and check (the caller's,
@@ -133,7 +134,8 @@ class SplitLoop {
   bool round(bool reoptimise, bool rebuild);
   void closure(int first);
   Json foam_rounds();
-  FoamFailures foam_failures() const;
+  FoamFailures foam_failures() const { return failures_of(hooks_.foam_failing(mesh_)); }
+  FoamFailures failures_of(std::vector<std::uint32_t> cells) const;
   std::optional<FoamCut> foam_cut(const FoamFailures& f);
   std::size_t foam_repin(const FoamFailures& f);
   Json finish();
@@ -390,7 +392,7 @@ Json SplitLoop::foam_rounds() {
       cut_undone = cut->undone;
       changed = !cut->undone;
       r.set("cut", std::move(cut->record));
-      if (changed) f = foam_failures();
+      if (changed) f = std::move(cut->after);
     }
     const std::size_t repinned = foam_repin(f);
     r.set("repinned_points", repinned);
@@ -400,9 +402,9 @@ Json SplitLoop::foam_rounds() {
   return records;
 }
 
-FoamFailures SplitLoop::foam_failures() const {
+FoamFailures SplitLoop::failures_of(std::vector<std::uint32_t> cells) const {
   FoamFailures f;
-  f.cells = hooks_.foam_failing(mesh_);
+  f.cells = std::move(cells);
   for (std::uint32_t c : f.cells) f.vertices.push_back(st_.internal_of_input[mesh_.cell_primal[c].idx]);
   return f;
 }
@@ -435,7 +437,8 @@ std::optional<FoamCut> SplitLoop::foam_cut(const FoamFailures& f) {
   }
   // Validity first; and a cut must lower the count of failing cells (the
   // corners of a cut vertex can fail in turn where no optimiser smooths).
-  const bool undone = check_.invalid_cells > 0 || hooks_.foam_failing(mesh_).size() >= f.cells.size();
+  FoamFailures after = check_.invalid_cells > 0 ? FoamFailures{} : foam_failures();
+  const bool undone = check_.invalid_cells > 0 || after.cells.size() >= f.cells.size();
   r.set("vertices", changed.size());
   r.set("undone", undone);
   if (undone) {
@@ -445,7 +448,7 @@ std::optional<FoamCut> SplitLoop::foam_cut(const FoamFailures& f) {
     st_.whole = whole_before;
     st_.cause = cause_before;
   }
-  return FoamCut{std::move(r), undone};
+  return FoamCut{std::move(r), undone, std::move(after)};
 }
 
 // The re-pin step of foam_rounds: the points of failing cells of whole
