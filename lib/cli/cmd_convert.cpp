@@ -25,7 +25,7 @@ const CommandSpec kConvert{
     "one polygon per side of each vertex, checked exactly, smoothed within the\n"
     "surfaces (not with --optimize none), written as VTU of VTK_POLYGON cells.",
     1, 1,
-    {"-o", "--format", "--force", "--vtu-encoding", "--zlib", "--feature-angle", "--strong-angle", "--boundary", "--no-cleanup", "--collapse-tol", "--optimize", "--planarity", "--no-optimize-tets", "--optimize-tets", "--tet-sweeps", "--tet-flips", "--tet-flip-rounds", "--no-split", "--split-rounds", "--no-coarsen", "--require-valid", "--metric",
+    {"-o", "--format", "--force", "--vtu-encoding", "--zlib", "--feature-angle", "--strong-angle", "--boundary", "--no-cleanup", "--collapse-tol", "--optimize", "--planarity", "--no-optimize-tets", "--optimize-tets", "--tet-sweeps", "--tet-flips", "--interior-points", "--tet-flip-rounds", "--no-split", "--split-rounds", "--no-coarsen", "--require-valid", "--metric",
      "--derivatives", "--relaxation", "--tol", "--polish-sweeps", "--polish-share", "--worst-rounds", "--settle-move", "--max-iter", "--threads", "--json", "--quiet"}};
 
 const CommandSpec kCheck{

@@ -101,6 +101,12 @@ const std::vector<OptionDef> kTable = {
      "the moves alone break the Delaunay property and invert dual edges)",
      [](const Settings& d) { return std::string(d.params.tetopt.flips.enabled ? "on" : "off"); },
      [](Settings& s, const std::string& v) { s.params.tetopt.flips.enabled = v == "on"; }},
+    {"--interior-points", K::Choice, "on|off", kNoRange, kNoRange,
+     "with the tet optimisation: insert interior vertices (Bowyer-Watson, exact predicates) into tets that "
+     "span the solid, far larger than the mesh around them (TetGen -pY meshes of thick solids), before the moves; "
+     "model faces, edges and vertices are kept",
+     [](const Settings& d) { return std::string(d.params.tetopt.steiner.enabled ? "on" : "off"); },
+     [](Settings& s, const std::string& v) { s.params.tetopt.steiner.enabled = v == "on"; }},
     {"--tet-flip-rounds", K::Int, "N", 1, TetFlipParams::kMaxRounds,
      "with the tet optimisation and flips: N rounds of the moves (to convergence) then the flips",
      [](const Settings& d) { return std::to_string(d.params.tetopt.flips.rounds); },

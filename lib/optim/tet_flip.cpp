@@ -1,5 +1,6 @@
 #include "optim/tet_flip.h"
 
+#include "optim/tet_ops.h"
 #include "optim/tet_optimize.h"
 
 #include <algorithm>
@@ -15,89 +16,7 @@ namespace polydual {
 
 namespace {
 
-constexpr std::uint32_t kNone = UINT32_MAX;
-constexpr std::int32_t kNoFace = TetMeshBuilder::kNoFace;
-using Tet = std::array<std::uint32_t, 4>;
-
-// The edges a flip may not remove: those classified on a model edge or face
-// (dim < 3), by their (low, high) vertex pair, sorted for a binary search.
-class ConstrainedEdges {
- public:
-  explicit ConstrainedEdges(const ClassifiedTetMesh& m) {
-    for (std::size_t e = 0; e < m.num_edges(); ++e) {
-      if (m.edge_class(EdgeId(e)).dim >= 3) continue;
-      const auto [a, b] = m.edge(EdgeId(e));
-      entries_.push_back({key(a.idx, b.idx), m.edge_class(EdgeId(e))});
-    }
-    std::sort(entries_.begin(), entries_.end(), [](const Entry& x, const Entry& y) { return x.key < y.key; });
-  }
-  // The classification of edge (a, b) if it is constrained, else nullptr.
-  const ModelRef* find(std::uint32_t a, std::uint32_t b) const {
-    const std::uint64_t k = key(a, b);
-    const auto it = std::lower_bound(entries_.begin(), entries_.end(), k,
-                                     [](const Entry& x, std::uint64_t y) { return x.key < y; });
-    return it != entries_.end() && it->key == k ? &it->ref : nullptr;
-  }
-
- private:
-  struct Entry {
-    std::uint64_t key;
-    ModelRef ref;
-  };
-  static std::uint64_t key(std::uint32_t a, std::uint32_t b) {
-    if (a > b) std::swap(a, b);
-    return (std::uint64_t(a) << 32) | b;
-  }
-  std::vector<Entry> entries_;
-};
-
-struct Candidate {
-  std::uint32_t tet, version;
-  int face;
-};
-
-// The mutable mesh the flips work on: tets by slot, with adjacency (4 * slot
-// + the neighbour's local face, kNone on the boundary) and the model-face tag
-// of every local face (kNoFace when none).
-struct FlipMesh {
-  std::span<const Point3> pts;
-  std::vector<Tet> tv;
-  std::vector<std::array<std::uint32_t, 4>> nb;
-  std::vector<std::array<std::int32_t, 4>> ftag;
-  std::vector<std::int32_t> region;
-  std::vector<std::uint32_t> input_tet;
-  std::vector<std::uint32_t> version;  // bumped whenever a slot is freed or refilled
-  std::vector<std::uint8_t> alive;
-  std::vector<std::uint32_t> free_slots;
-  ConstrainedEdges cedges;
-  std::deque<Candidate> queue;
-
-  explicit FlipMesh(const ClassifiedTetMesh& m) : pts(m.points()), cedges(m) {
-    const std::size_t n = m.num_tets();
-    tv.resize(n), nb.resize(n), ftag.resize(n), region.resize(n), input_tet.resize(n);
-    version.assign(n, 0), alive.assign(n, 1);
-    for (std::size_t t = 0; t < n; ++t) {
-      const TetId id(t);
-      for (int i = 0; i < 4; ++i) {
-        tv[t][i] = m.tet(id)[i].idx;
-        const TetId u = m.tet_neighbor(id, i);
-        nb[t][i] = u.valid() ? 4 * u.idx + std::uint32_t(m.tet_neighbor_face(id, i)) : kNone;
-        const ModelRef r = m.triangle_class(m.tet_triangle(id, i));
-        ftag[t][i] = r.dim == 2 ? r.tag : kNoFace;
-      }
-      region[t] = m.region(id);
-      input_tet[t] = m.input_tet(id);
-    }
-  }
-  const Point3& p(std::uint32_t v) const { return pts[v]; }
-  Sign orient(const Tet& t) const { return orient3d(p(t[0]), p(t[1]), p(t[2]), p(t[3])); }
-  double quality(const Tet& t) const { return tet_quality(p(t[0]), p(t[1]), p(t[2]), p(t[3])); }
-  int local(std::uint32_t t, std::uint32_t v) const {
-    for (int i = 0; i < 4; ++i)
-      if (tv[t][i] == v) return i;
-    return -1;
-  }
-};
+using namespace tetops;
 
 // Interior face (t, i) not locally Delaunay: the neighbour's far vertex
 // strictly inside t's circumsphere (exact; symmetric in the two tets).
@@ -107,94 +26,6 @@ bool fails_insphere(const FlipMesh& w, std::uint32_t t, int i) {
   const Tet& a = w.tv[t];
   const std::uint32_t far = w.tv[n >> 2][n & 3];
   return insphere(w.p(a[0]), w.p(a[1]), w.p(a[2]), w.p(a[3]), w.p(far)) == Sign::Positive;
-}
-
-// A local face's three vertices, sorted (a key to match faces).
-std::array<std::uint32_t, 3> face_key(const Tet& t, int i) {
-  std::array<std::uint32_t, 3> k{};
-  int n = 0;
-  for (int j = 0; j < 4; ++j)
-    if (j != i) k[n++] = t[j];
-  std::sort(k.begin(), k.end());
-  return k;
-}
-
-struct OuterFace {
-  std::array<std::uint32_t, 3> key;
-  std::uint32_t link;  // 4 * outer tet + its local face, or kNone
-  std::int32_t tag;
-};
-
-// The faces of the cavity `old` (tets being replaced) that stay: every face
-// whose neighbour is not in the cavity, with its link and model-face tag.
-std::vector<OuterFace> cavity_boundary(const FlipMesh& w, std::span<const std::uint32_t> old) {
-  std::vector<OuterFace> out;
-  for (std::uint32_t o : old)
-    for (int i = 0; i < 4; ++i) {
-      const std::uint32_t n = w.nb[o][i];
-      if (n != kNone && std::find(old.begin(), old.end(), n >> 2) != old.end()) continue;
-      out.push_back({face_key(w.tv[o], i), n, w.ftag[o][i]});
-    }
-  return out;
-}
-
-// Slots for k new tets replacing `old`: the old slots first, then freed ones,
-// then new slots at the end. Old slots not reused are freed.
-std::vector<std::uint32_t> take_slots(FlipMesh& w, std::span<const std::uint32_t> old, std::size_t k) {
-  std::vector<std::uint32_t> slots;
-  for (std::size_t j = 0; j < old.size(); ++j) {
-    ++w.version[old[j]];
-    if (j < k) slots.push_back(old[j]);
-    else {
-      w.alive[old[j]] = 0;
-      w.free_slots.push_back(old[j]);
-    }
-  }
-  while (slots.size() < k) {
-    if (!w.free_slots.empty()) {
-      slots.push_back(w.free_slots.back());
-      w.free_slots.pop_back();
-      ++w.version[slots.back()];
-    } else {
-      slots.push_back(std::uint32_t(w.tv.size()));
-      w.tv.emplace_back(), w.nb.emplace_back(), w.ftag.emplace_back();
-      w.region.push_back(0), w.input_tet.push_back(0), w.version.push_back(0), w.alive.push_back(0);
-    }
-  }
-  return slots;
-}
-
-// Replaces the tets `old` (one region, one convex cavity) by `fresh` (all
-// positive, same union): relinks the cavity's boundary faces with their tags,
-// links the new interior faces (no model face) and queues the boundary faces.
-void replace(FlipMesh& w, std::span<const std::uint32_t> old, std::span<const Tet> fresh) {
-  const std::vector<OuterFace> outer = cavity_boundary(w, old);
-  const std::int32_t region = w.region[old[0]];
-  const std::uint32_t input = w.input_tet[old[0]];
-  const std::vector<std::uint32_t> slots = take_slots(w, old, fresh.size());
-  for (std::size_t j = 0; j < fresh.size(); ++j) {
-    const std::uint32_t s = slots[j];
-    w.tv[s] = fresh[j], w.region[s] = region, w.alive[s] = 1;
-    if (j >= old.size()) w.input_tet[s] = input;
-    w.nb[s].fill(kNone);
-  }
-  for (std::size_t j = 0; j < fresh.size(); ++j)
-    for (int i = 0; i < 4; ++i) {
-      const std::uint32_t s = slots[j];
-      const auto key = face_key(fresh[j], i);
-      const auto it = std::find_if(outer.begin(), outer.end(), [&](const OuterFace& f) { return f.key == key; });
-      if (it != outer.end()) {
-        w.nb[s][i] = it->link, w.ftag[s][i] = it->tag;
-        if (it->link != kNone) w.nb[it->link >> 2][it->link & 3] = 4 * s + std::uint32_t(i);
-        w.queue.push_back({s, w.version[s], i});
-        continue;
-      }
-      w.ftag[s][i] = kNoFace;
-      for (std::size_t q = 0; q < fresh.size() && w.nb[s][i] == kNone; ++q)
-        for (int k = 0; k < 4; ++k)
-          if (q != j && face_key(fresh[q], k) == key) w.nb[s][i] = 4 * slots[q] + std::uint32_t(k);
-      if (w.nb[s][i] == kNone) throw std::logic_error("delaunay_flips: a new face matches no face of the cavity");
-    }
 }
 
 enum class FlipOutcome { Flipped23, Flipped32, Nonconvex, Degenerate, ConstrainedEdge, WorseTet };
@@ -300,49 +131,6 @@ void run_flips(FlipMesh& w, const TetFlipParams& params, TetFlipReport& rep) {
     }
     count_outcome(try_flip(w, c.tet, c.face), rep);
   }
-}
-
-// The ClassifiedTetMesh of the flipped tets: live slots in order, the
-// classification of vertices, model-face triangles and constrained edges
-// carried over; new edges are classified on their region as classify() does.
-ClassifiedTetMesh rebuild(const ClassifiedTetMesh& mesh, const FlipMesh& w) {
-  std::vector<std::array<VertexId, 4>> tets;
-  std::vector<std::int32_t> regions;
-  std::vector<std::uint32_t> input_tet;
-  std::vector<std::array<std::int32_t, 4>> tags;
-  for (std::size_t s = 0; s < w.tv.size(); ++s) {
-    if (!w.alive[s]) continue;
-    tets.push_back({VertexId(w.tv[s][0]), VertexId(w.tv[s][1]), VertexId(w.tv[s][2]), VertexId(w.tv[s][3])});
-    regions.push_back(w.region[s]);
-    input_tet.push_back(w.input_tet[s]);
-    tags.push_back(w.ftag[s]);
-  }
-  ClassifiedTetMesh out = TetMeshBuilder::build_topology(mesh.source(), mesh.points(), std::move(tets),
-                                                         std::move(regions), mesh.input_vertices(),
-                                                         std::move(input_tet));
-  TetMeshBuilder::vertex_class(out) = [&] {
-    std::vector<ModelRef> vc(mesh.num_vertices());
-    for (std::size_t v = 0; v < vc.size(); ++v) vc[v] = mesh.vertex_class(VertexId(v));
-    return vc;
-  }();
-  auto& tf = TetMeshBuilder::triangle_face(out);
-  tf.assign(out.num_triangles(), kNoFace);
-  auto& ec = TetMeshBuilder::edge_class(out);
-  ec.assign(out.num_edges(), ModelRef{});
-  for (std::size_t t = 0; t < out.num_tets(); ++t) {
-    const TetId id(t);
-    for (int i = 0; i < 4; ++i) tf[out.tet_triangle(id, i).idx] = tags[t][i];
-    for (int k = 0; k < 6; ++k) {
-      const EdgeId e = out.tet_edge(id, k);
-      const auto [a, b] = out.edge(e);
-      const ModelRef* r = w.cedges.find(a.idx, b.idx);
-      ec[e.idx] = r ? *r : ModelRef{3, out.region(out.edge_tet(e))};
-    }
-  }
-  TetMeshBuilder::model(out) = mesh.model();
-  TetMeshBuilder::classification_warnings(out) = mesh.classification_warnings();
-  TetMeshBuilder::marker_features(out) = mesh.marker_features();
-  return out;
 }
 
 }  // namespace

@@ -351,6 +351,7 @@ void TetOptParams::validate() const {
   check_param("tet optimisation max_halvings", "halvings", {0, double(kMaxHalvings)}, max_halvings);
   check_param("tet optimisation c", "eq. 3", {kMinDeltaC, kMaxDeltaC}, c);
   flips.validate();
+  steiner.validate();
 }
 
 Json TetOptParams::to_json() const {
@@ -362,6 +363,7 @@ Json TetOptParams::to_json() const {
   j.set("max_halvings", max_halvings);
   j.set("c", c);
   j.set("flips", flips.to_json());
+  j.set("interior_points", steiner.to_json());
   return j;
 }
 
@@ -424,6 +426,7 @@ Json TetOptReport::to_json() const {
   j.set("rounds", rounds);
   j.set("seconds", seconds);
   if (flipped) j.set("flips", flips.to_json());
+  j.set("interior_points", steiner.to_json());
   return j;
 }
 
@@ -483,7 +486,8 @@ ClassifiedTetMesh optimize_tets(const ClassifiedTetMesh& input, const TetOptPara
   const Stopwatch clock;
   TetOptReport rep;
   rep.before = tet_quality_stats(input, input.points());
-  ClassifiedTetMesh mesh = input;
+  ClassifiedTetMesh mesh =
+      params.steiner.enabled ? insert_interior_points(input, params.steiner, &rep.steiner) : input;
   const int rounds = params.flips.enabled ? params.flips.rounds : 1;
   for (int round = 0; round < rounds; ++round) {
     TetOptReport r;

@@ -35,6 +35,7 @@
 
 #include "core/json.h"
 #include "mesh/classified_tet_mesh.h"
+#include "optim/steiner.h"
 #include "optim/tet_flip.h"
 
 namespace polydual {
@@ -63,6 +64,9 @@ struct TetOptParams {
   double c = 50.0;
   // The flip pass after the moves (optimize_tets only). Default on.
   TetFlipParams flips;
+  // Interior points inserted before the moves where tets span the solid
+  // (optimize_tets only; optim/steiner.h). Default on.
+  SteinerParams steiner;
 
   static constexpr int kMaxSweeps = 10000, kMaxHalvings = 60;
   static constexpr double kMaxTol = 1.0, kMinDeltaC = 1.0, kMaxDeltaC = 1000.0;
@@ -97,6 +101,7 @@ struct TetOptReport {
   double seconds = 0;  // the whole stage, flips and mesh rebuilds included
   bool flipped = false; // the flip pass ran (flips below)
   TetFlipReport flips;
+  SteinerReport steiner;  // the interior points (when params.steiner.enabled)
   Json to_json() const;
 };
 
@@ -110,9 +115,11 @@ std::vector<Point3> optimized_tet_points(const ClassifiedTetMesh& mesh, const Te
 // orient3d.
 ClassifiedTetMesh with_points(const ClassifiedTetMesh& mesh, std::vector<Point3> points);
 
-// Moves, then (params.flips.enabled) the flip pass: returns the mesh that
-// results (`mesh` unchanged) and reports into `report` (may be null). With
-// flips the tets are renumbered (tet_flip.h).
+// Interior points (params.steiner.enabled), then the moves, then
+// (params.flips.enabled) the flip pass: returns the mesh that results (`mesh`
+// unchanged) and reports into `report` (may be null). With flips or inserted
+// points the tets are renumbered (tet_flip.h); inserted vertices come after
+// mesh's (steiner.h).
 ClassifiedTetMesh optimize_tets(const ClassifiedTetMesh& mesh, const TetOptParams& params,
                                 TetOptReport* report = nullptr);
 

@@ -83,6 +83,19 @@ ClassifiedTetMesh optimise_tets(const ClassifiedTetMesh& primal, const TetOptPar
   return moved;
 }
 
+// Interior vertices that the tet stage inserted (optim/steiner.h) each make
+// a cell: the dual is then not that of the mesh given, which the user is told.
+void warn_inserted_points(ConvertResult& r, std::size_t vertices_before) {
+  const std::size_t n = r.primal.num_vertices() - vertices_before;
+  if (n == 0) return;
+  char share[32];
+  std::snprintf(share, sizeof share, "%.1f %%", 100.0 * double(n) / double(vertices_before));
+  r.warnings.push_back("inserted " + std::to_string(n) + " interior vertices (" + share + " of the mesh's " +
+                       std::to_string(vertices_before) +
+                       ") into tets that span the solid, each the vertex of a cell of the dual; "
+                       "--interior-points off keeps the mesh's vertices");
+}
+
 // The paper's caps join the centres of the boundary triangles round a
 // boundary vertex and so cut every convex corner of a curved model face:
 // small curved materials lose volume (a Gmsh inclusion of a thousand tets
@@ -241,8 +254,11 @@ void run_pipeline(ConvertResult& r, const TetSoup& soup, const PipelineParams& p
   });
   r.input_tets = r.primal.num_tets();
   if (release) *release = TetSoup{};
-  if (params.tetopt.enabled)
+  if (params.tetopt.enabled) {
+    const std::size_t vertices = r.primal.num_vertices();
     r.primal = run_stage(rep, hooks, "optimize_tets", [&](Json& stats) { return optimise_tets(r.primal, params.tetopt, stats); });
+    warn_inserted_points(r, vertices);
+  }
   // What the classification completed (an incomplete given classification).
   for (const std::string& w : r.primal.classification_warnings()) r.warnings.push_back(w);
   SplitState st;

@@ -5,7 +5,8 @@ Every mesh is written by a program that users bring, from models written here
   gmsh_*      Gmsh OpenCASCADE booleans at Gmsh's default size (no size
               option: what a new user gets) and at half of it (-clscale 0.5);
   tetgen_*    TetGen on Gmsh's STL of CAD-like surfaces with sharp edges, with
-              its quality bound (_q: -pq1.4) and without it (_n: -pY, slivers);
+              its quality bound (_q: -pq1.4) and without it (_n: -pY, slivers;
+              on the thick torus and cone-on-a-box, no interior vertex);
   cgal_image_*    CGAL Mesh_3 on a three-material labelled image
                   (experiments/meshgen/labelled_image_medit);
   cgal_features_* CGAL Mesh_3 on Gmsh's STL of a model, sharp features detected
@@ -51,6 +52,8 @@ MESHES = [
     ("tetgen_star_n", _tetgen("star", "-pY")),
     ("tetgen_fillets_q", _tetgen("fillets", "-pq1.4")),
     ("tetgen_fillets_n", _tetgen("fillets", "-pY")),
+    ("tetgen_torus_n", _tetgen("torus", "-pY")),
+    ("tetgen_conebox_n", _tetgen("conebox", "-pY")),
     ("cgal_image_balls", {"tool": "labelled_image_medit", "args": ["shape=balls"]}),
     ("cgal_image_blocks", {"tool": "labelled_image_medit", "args": ["shape=blocks"]}),
     ("cgal_features_holes", {"tool": "polyhedral_features_medit", "model": "holes", "args": []}),
