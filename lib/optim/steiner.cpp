@@ -1,6 +1,7 @@
 #include "optim/steiner.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <utility>
 
@@ -15,6 +16,15 @@ namespace polydual {
 namespace {
 
 using namespace tetops;
+
+// Whether a tet with corners p and vertex sizes hs is large against the mesh
+// size there: every corner farther from the centroid than ratio times the
+// mean size (steiner.h). Floating point: it only chooses where to insert.
+bool large_tet(const std::array<Point3, 4>& p, const std::array<double, 4>& hs, double ratio) {
+  const Point3 c = 0.25 * (p[0] + p[1] + p[2] + p[3]);
+  const double size = 0.25 * ratio * (hs[0] + hs[1] + hs[2] + hs[3]);
+  return std::all_of(p.begin(), p.end(), [&](const Point3& q) { return norm(q - c) > size; });
+}
 
 // A cavity grown from one tet: its tets (the first is the seed) and a stamp
 // per slot telling membership in O(1).
@@ -47,18 +57,10 @@ class Inserter {
  public:
   Inserter(FlipMesh& w, std::vector<double>& h) : w_(w), h_(h) {}
 
-  // The mesh size at tet t (the mean of its vertices' sizes) and whether t
-  // is large against it (steiner.h). Floating point: it only chooses where
-  // to insert.
   bool large(std::uint32_t t, double ratio) const {
     const Tet& a = w_.tv[t];
-    const Point3 c = centroid(t);
-    double size = 0;
-    for (std::uint32_t v : a) size += h_[v];
-    size *= 0.25 * ratio;
-    for (std::uint32_t v : a)
-      if (!(norm(w_.p(v) - c) > size)) return false;
-    return true;
+    return large_tet({w_.p(a[0]), w_.p(a[1]), w_.p(a[2]), w_.p(a[3])}, {h_[a[0]], h_[a[1]], h_[a[2]], h_[a[3]]},
+                     ratio);
   }
 
   Outcome insert_centroid(std::uint32_t t0) {
@@ -225,6 +227,17 @@ std::vector<double> vertex_sizes(const ClassifiedTetMesh& m) {
   return h;
 }
 
+// Whether a tet of m is large (large_tet).
+bool any_large(const ClassifiedTetMesh& m, const std::vector<double>& h, double ratio) {
+  for (std::size_t t = 0; t < m.num_tets(); ++t) {
+    const auto& v = m.tet(TetId(t));
+    if (large_tet({m.point(v[0]), m.point(v[1]), m.point(v[2]), m.point(v[3])},
+                  {h[v[0].idx], h[v[1].idx], h[v[2].idx], h[v[3].idx]}, ratio))
+      return true;
+  }
+  return false;
+}
+
 void count(Outcome o, SteinerReport& rep) {
   switch (o) {
     case Outcome::Inserted: ++rep.inserted; break;
@@ -274,8 +287,13 @@ ClassifiedTetMesh insert_interior_points(const ClassifiedTetMesh& mesh, const St
   const Stopwatch clock;
   SteinerReport rep;
   for (std::size_t v = 0; v < mesh.num_vertices(); ++v) rep.interior_vertices_before += mesh.vertex_class(VertexId(v)).dim == 3;
-  FlipMesh w(mesh);
   std::vector<double> h = vertex_sizes(mesh);
+  if (!any_large(mesh, h, params.ratio)) {  // the common case: no work, no copy of the mesh
+    rep.seconds = clock.seconds();
+    if (report) *report = rep;
+    return mesh;
+  }
+  FlipMesh w(mesh);
   Inserter ins(w, h);
   const auto limit = std::size_t(params.max_points_per_vertex * double(mesh.num_vertices()));
   for (int pass = 0; pass < params.max_passes && !rep.hit_limit; ++pass) {
@@ -302,7 +320,7 @@ ClassifiedTetMesh insert_interior_points(const ClassifiedTetMesh& mesh, const St
     } catch (const InputError& e) {
       // A guard, as for the flips: the points are an improvement, never a
       // condition of correctness.
-      rep.failed = e.what();
+      rep.failed = std::string(e.what());
       rep.inserted = 0;
     }
   rep.seconds = clock.seconds();

@@ -5,10 +5,10 @@
 // without its quality bound or a volume bound on a thick solid, has tets that
 // reach from one side of the solid to the other. Every dual cell is then a
 // slab from its boundary vertex deep into the solid, and the optimiser leaves
-// many tangled: on five such TetGen meshes of thick CAD solids (a cone on a
-// box, a torus, a ball in a box, crossing cylinders) the split ended at
-// +104-977 % cells, max kappa/3 13-37, in 7-56 s for 3-12k tets, where TetGen
-// with interior points (`-a`) gives +0 %, kappa/3 3, 0.6 s.
+// many tangled: on six such TetGen meshes of thick CAD solids (a torus, a
+// cone on a box, a ball in a box, crossing cylinders) the split ended at
+// +130-977 % cells, max kappa/3 13-47, in 23-56 s for 3-12k tets, where TetGen
+// with interior points (`-a`) gives +0 %, kappa/3 3, 0.6 s (bench/README.md).
 //
 // What: while a tet is large against the mesh size around it (every vertex
 // of it farther from its centroid than `ratio` times the mean size h of its
@@ -41,11 +41,11 @@ struct SteinerParams {
   // Insert interior points (`--interior-points on|off`). Default on.
   bool enabled = true;
   // A tet is split when each vertex is farther than ratio * h from its
-  // centroid (a regular tet: 0.61). Default 2: on the five TetGen meshes
-  // above it inserts 79-305 points (1-3 % of the tets) and every one ends
-  // with no split cell, max kappa/3 2.5-3.1, in 1.0-1.9 s; ratio 1 inserts
-  // ~10x as many points for the same validity, and leaves Gmsh's, Netgen's,
-  // CGAL's and TetGen's quality meshes of tests/corpus untouched as well.
+  // centroid (a regular tet: 0.61). Default 2: on the six TetGen meshes
+  // above it inserts 53-305 points (1-3 % of the tets) and every one ends
+  // with no split cell, max kappa/3 2.5-3.5, in 1.0-2.5 s; ratio 1 inserts
+  // ~10x as many points for the same validity. Either leaves Gmsh's,
+  // Netgen's, CGAL's and TetGen's quality meshes of tests/corpus untouched.
   double ratio = 2.0;
   // Passes over the tets, at most (a pass inserts into the tets that were
   // candidates at its start). Default 8.
