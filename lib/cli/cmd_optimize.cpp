@@ -38,7 +38,8 @@ int cmd_optimize(const Settings& s) {
   std::unique_ptr<ClassifiedTetMesh> primal;
   if (!s.primal.empty()) {
     clock = Stopwatch();
-    primal = std::make_unique<ClassifiedTetMesh>(classify(read_tet_mesh(s.primal), s.params.classify));
+    primal = std::make_unique<ClassifiedTetMesh>(
+        primal_of_dual(pm, classify(read_tet_mesh(s.primal), s.params.classify), s.params.tetopt.steiner));
     require_primal_of(pm, s.positional[0], *primal);
     seconds.set("primal", clock.seconds());
   }

@@ -101,6 +101,15 @@ void check_primal_positions(const PolyMesh& mesh, const std::string& mesh_source
 
 }  // namespace
 
+ClassifiedTetMesh primal_of_dual(const PolyMesh& mesh, ClassifiedTetMesh primal, const SteinerParams& steiner) {
+  std::uint32_t named = 0, have = 0;
+  for (VertexId v : mesh.cell_primal)
+    if (v.valid()) named = std::max(named, v.idx + 1);
+  for (std::size_t v = 0; v < primal.num_vertices(); ++v) have = std::max(have, primal.input_vertex(VertexId(v)) + 1);
+  if (named > have && steiner.enabled) return insert_interior_points(primal, steiner);
+  return primal;
+}
+
 void require_primal_of(const PolyMesh& mesh, const std::string& mesh_source, const ClassifiedTetMesh& primal) {
   check_primal_positions(mesh, mesh_source, primal, primal_vertex_of_cells(mesh, mesh_source, primal));
 }

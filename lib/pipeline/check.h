@@ -8,6 +8,7 @@
 #include "io/vtu_poly_writer.h"
 #include "mesh/classified_tet_mesh.h"
 #include "mesh/poly_mesh.h"
+#include "optim/steiner.h"
 #include "quality/check_result.h"
 
 namespace polydual {
@@ -27,6 +28,12 @@ void require_valid_mesh(const CheckResult& c, const std::string& source);
 //    own size on each side (a dual cell surrounds its vertex; a coarse test
 //    for the cells whose vertex is no dual point).
 void require_primal_of(const PolyMesh& mesh, const std::string& mesh_source, const ClassifiedTetMesh& primal);
+
+// `optimize --primal`: the classified tet mesh read from the file, with the
+// interior points that `convert`'s tet stage inserted (optim/steiner.h, with
+// `steiner`) when mesh's cells name vertices past the file's: the insertion
+// is deterministic, so they get the numbers convert gave them.
+ClassifiedTetMesh primal_of_dual(const PolyMesh& mesh, ClassifiedTetMesh primal, const SteinerParams& steiner);
 
 // The per-cell arrays the writers store beside the mesh ("valid", "bad_tets").
 std::vector<CellField> verdict_fields(const std::vector<CellVerdict>& verdicts);

@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <map>
 #include <filesystem>
@@ -225,6 +226,33 @@ TEST(Steiner, TheBallsDualNeedsNoSplitWithThem) {
                           [](const std::string& w) { return w.find("interior vertices") != std::string::npos; }));
   EXPECT_FALSE(std::any_of(b.warnings.begin(), b.warnings.end(),
                            [](const std::string& w) { return w.find("interior vertices") != std::string::npos; }));
+}
+
+// A dual with inserted points names vertices past its file's: `optimize
+// --primal FILE` inserts the same ones (deterministic) and accepts it.
+TEST(Steiner, OptimizeTakesTheFileTheDualWasMadeFrom) {
+  namespace fs = std::filesystem;
+  const fs::path d = fs::temp_directory_path() / ("polydual_steiner_primal_" + std::to_string(::getpid()));
+  fs::create_directories(d);
+  const std::string mesh = (d / "ball.mesh").string(), vtu = (d / "ball.vtu").string(),
+                    out = (d / "again.vtu").string();
+  {
+    const TetSoup soup = sphere_surface_mesh(200);
+    std::FILE* f = std::fopen(mesh.c_str(), "w");
+    ASSERT_NE(f, nullptr);
+    std::fprintf(f, "MeshVersionFormatted 2\nDimension 3\nVertices\n%zu\n", soup.points.size());
+    for (const Point3& p : soup.points) std::fprintf(f, "%.17g %.17g %.17g 0\n", p.x, p.y, p.z);
+    std::fprintf(f, "Tetrahedra\n%zu\n", soup.tets.size());
+    for (const auto& t : soup.tets) std::fprintf(f, "%u %u %u %u 1\n", t[0] + 1, t[1] + 1, t[2] + 1, t[3] + 1);
+    std::fprintf(f, "End\n");
+    std::fclose(f);
+  }
+  const testing::CmdResult made = testing::run_polydual("convert " + mesh + " -o " + vtu + " --json");
+  ASSERT_EQ(made.code, 0) << made.out;
+  EXPECT_NE(made.out.find("inserted"), std::string::npos);
+  const testing::CmdResult again = testing::run_polydual("optimize " + vtu + " -o " + out + " --primal " + mesh);
+  EXPECT_EQ(again.code, 0) << again.out;
+  fs::remove_all(d);
 }
 
 TEST(Steiner, CommandLineOption) {
