@@ -39,7 +39,7 @@ int cmd_optimize(const Settings& s) {
   if (!s.primal.empty()) {
     clock = Stopwatch();
     primal = std::make_unique<ClassifiedTetMesh>(
-        primal_of_dual(pm, classify(read_tet_mesh(s.primal), s.params.classify), s.params.tetopt.steiner));
+        primal_of_dual(pm, classify(read_tet_mesh(s.primal), s.params.classify), s.params.tetopt));
     require_primal_of(pm, s.positional[0], *primal);
     seconds.set("primal", clock.seconds());
   }

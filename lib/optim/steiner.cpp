@@ -251,6 +251,7 @@ void count(Outcome o, SteinerReport& rep) {
 
 void SteinerParams::validate() const {
   check_param("SteinerParams::ratio", "ratio", {kMinRatio, kMaxRatio}, ratio);
+  check_param("SteinerParams::ratio_without_optimiser", "ratio", {kMinRatio, kMaxRatio}, ratio_without_optimiser);
   check_param("SteinerParams::max_passes", "passes", {0, double(kMaxPasses)}, max_passes);
   check_param("SteinerParams::max_points_per_vertex", "points per vertex", {0, 100}, max_points_per_vertex);
 }
@@ -259,6 +260,7 @@ Json SteinerParams::to_json() const {
   Json j = Json::object();
   j.set("enabled", enabled);
   j.set("ratio", ratio);
+  j.set("ratio_without_optimiser", ratio_without_optimiser);
   j.set("max_passes", max_passes);
   j.set("max_points_per_vertex", max_points_per_vertex);
   return j;

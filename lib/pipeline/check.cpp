@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "io/vtu_poly_writer.h"
+#include "optim/tet_optimize.h"
 
 namespace polydual {
 
@@ -101,13 +102,22 @@ void check_primal_positions(const PolyMesh& mesh, const std::string& mesh_source
 
 }  // namespace
 
-ClassifiedTetMesh primal_of_dual(const PolyMesh& mesh, ClassifiedTetMesh primal, const SteinerParams& steiner) {
+ClassifiedTetMesh primal_of_dual(const PolyMesh& mesh, ClassifiedTetMesh primal, const TetOptParams& tetopt) {
   std::uint32_t named = 0, have = 0;
   for (VertexId v : mesh.cell_primal)
     if (v.valid()) named = std::max(named, v.idx + 1);
   for (std::size_t v = 0; v < primal.num_vertices(); ++v) have = std::max(have, primal.input_vertex(VertexId(v)) + 1);
-  if (named > have && steiner.enabled) return insert_interior_points(primal, steiner);
-  return primal;
+  if (named <= have || !tetopt.enabled || !tetopt.steiner.enabled) return primal;
+  // convert's tet stage, with its ratio for an optimised dual or the one
+  // without an optimiser: the one that gives the dual's vertices. Its moves
+  // too: an inserted vertex moves far from the centroid it was put at.
+  for (double ratio : {tetopt.steiner.ratio, tetopt.steiner.ratio_without_optimiser}) {
+    TetOptParams p = tetopt;
+    p.steiner.ratio = ratio;
+    ClassifiedTetMesh m = optimize_tets(primal, p);
+    if (have + m.num_vertices() - primal.num_vertices() == named) return m;
+  }
+  return primal;  // require_primal_of names the mismatch
 }
 
 void require_primal_of(const PolyMesh& mesh, const std::string& mesh_source, const ClassifiedTetMesh& primal) {

@@ -8,7 +8,7 @@
 #include "io/vtu_poly_writer.h"
 #include "mesh/classified_tet_mesh.h"
 #include "mesh/poly_mesh.h"
-#include "optim/steiner.h"
+#include "optim/tet_optimize.h"
 #include "quality/check_result.h"
 
 namespace polydual {
@@ -29,11 +29,13 @@ void require_valid_mesh(const CheckResult& c, const std::string& source);
 //    for the cells whose vertex is no dual point).
 void require_primal_of(const PolyMesh& mesh, const std::string& mesh_source, const ClassifiedTetMesh& primal);
 
-// `optimize --primal`: the classified tet mesh read from the file, with the
-// interior points that `convert`'s tet stage inserted (optim/steiner.h, with
-// `steiner`) when mesh's cells name vertices past the file's: the insertion
-// is deterministic, so they get the numbers convert gave them.
-ClassifiedTetMesh primal_of_dual(const PolyMesh& mesh, ClassifiedTetMesh primal, const SteinerParams& steiner);
+// `optimize --primal`: the classified tet mesh read from the file or, when
+// mesh's cells name vertices past the file's (the interior points of
+// convert's tet stage, optim/steiner.h), that mesh after convert's tet stage
+// (`tetopt`, with the ratio of an optimised dual or of one without an
+// optimiser, whichever gives mesh's vertices): deterministic, so its vertices
+// get the numbers and places convert gave them.
+ClassifiedTetMesh primal_of_dual(const PolyMesh& mesh, ClassifiedTetMesh primal, const TetOptParams& tetopt);
 
 // The per-cell arrays the writers store beside the mesh ("valid", "bad_tets").
 std::vector<CellField> verdict_fields(const std::vector<CellVerdict>& verdicts);

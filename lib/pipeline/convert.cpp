@@ -256,7 +256,9 @@ void run_pipeline(ConvertResult& r, const TetSoup& soup, const PipelineParams& p
   if (release) *release = TetSoup{};
   if (params.tetopt.enabled) {
     const std::size_t vertices = r.primal.num_vertices();
-    r.primal = run_stage(rep, hooks, "optimize_tets", [&](Json& stats) { return optimise_tets(r.primal, params.tetopt, stats); });
+    TetOptParams tetopt = params.tetopt;
+    if (params.optim.method == OptimParams::Method::None) tetopt.steiner.ratio = tetopt.steiner.ratio_without_optimiser;
+    r.primal = run_stage(rep, hooks, "optimize_tets", [&](Json& stats) { return optimise_tets(r.primal, tetopt, stats); });
     warn_inserted_points(r, vertices);
   }
   // What the classification completed (an incomplete given classification).

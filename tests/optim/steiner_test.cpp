@@ -252,6 +252,12 @@ TEST(Steiner, OptimizeTakesTheFileTheDualWasMadeFrom) {
   EXPECT_NE(made.out.find("inserted"), std::string::npos);
   const testing::CmdResult again = testing::run_polydual("optimize " + vtu + " -o " + out + " --primal " + mesh);
   EXPECT_EQ(again.code, 0) << again.out;
+  // Without an optimiser convert inserts more points (ratio_without_optimiser).
+  const testing::CmdResult raw = testing::run_polydual("convert " + mesh + " -o " + vtu + " --force --optimize none");
+  ASSERT_EQ(raw.code, 0) << raw.out;
+  fs::remove(out);
+  const testing::CmdResult raw_again = testing::run_polydual("optimize " + vtu + " -o " + out + " --primal " + mesh);
+  EXPECT_EQ(raw_again.code, 0) << raw_again.out;
   fs::remove_all(d);
 }
 
