@@ -155,6 +155,7 @@ TEST(DualChains, CgalLabelledImageConvertsWithEveryCellClosed) {
     raw.classify.feature_angle_deg = angle;
     raw.split.enabled = false;
     raw.optim.method = OptimParams::Method::None;
+    raw.tetopt.enabled = false;  // the same primal as the split's below
     const ConvertResult r = convert(soup, raw);
     EXPECT_GE(r.primal.multi_chain_edges().size(), 3u) << "the mesh must still touch itself along edges";
     EXPECT_EQ(r.check.validation.closed_cells, r.check.validation.cells) << "raw, feature angle " << angle;
