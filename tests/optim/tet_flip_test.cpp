@@ -15,6 +15,7 @@
 
 #include "classify/classify.h"
 #include "core/error.h"
+#include "classified_structure.h"
 #include "exact_volume.h"
 #include "generate/random_mesh.h"
 #include "optim/tet_flip.h"
@@ -55,32 +56,10 @@ std::size_t non_positive_tets(const ClassifiedTetMesh& m) {
   return bad;
 }
 
-using TriKey = std::tuple<std::uint32_t, std::uint32_t, std::uint32_t, std::int32_t>;
-using EdgeKey = std::tuple<std::uint32_t, std::uint32_t, int, std::int32_t>;
-
-// Model-face triangles as (sorted vertices, tag).
-std::set<TriKey> model_face_triangles(const ClassifiedTetMesh& m) {
-  std::set<TriKey> s;
-  for (std::size_t f = 0; f < m.num_triangles(); ++f) {
-    if (!m.on_model_face(TriId(f))) continue;
-    auto v = m.triangle(TriId(f));
-    std::sort(v.begin(), v.end());
-    s.insert({v[0].idx, v[1].idx, v[2].idx, m.triangle_class(TriId(f)).tag});
-  }
-  return s;
-}
-
-// Edges on a model edge or face as (vertices, dim, tag).
-std::set<EdgeKey> constrained_edges(const ClassifiedTetMesh& m) {
-  std::set<EdgeKey> s;
-  for (std::size_t e = 0; e < m.num_edges(); ++e) {
-    const ModelRef r = m.edge_class(EdgeId(e));
-    if (r.dim >= 3) continue;
-    const auto [a, b] = m.edge(EdgeId(e));
-    s.insert({a.idx, b.idx, r.dim, r.tag});
-  }
-  return s;
-}
+using testing::constrained_edges;
+using testing::EdgeKey;
+using testing::model_face_triangles;
+using testing::TriKey;
 
 TetSoup soup_of(const ClassifiedTetMesh& m) {
   TetSoup soup;
